@@ -1,0 +1,60 @@
+// User-facing problems: every one names the file and the JSON pointer of the offending value.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lamina {
+
+enum class Severity { Error, Warning };
+
+struct Diagnostic {
+  Severity severity = Severity::Error;
+  std::string file;
+  std::string pointer;  // RFC 6901, "" is the whole document
+  std::string message;
+  std::string hint;     // optional: what to write instead
+};
+
+// "file:pointer: message (hint)" -- the one format the CLI prints.
+std::string format(const Diagnostic& d);
+
+// Errors and warnings travel separately so that callers can treat warnings as advice.
+class Diagnostics {
+ public:
+  void error(std::string file, std::string pointer, std::string message, std::string hint = {});
+  void warning(std::string file, std::string pointer, std::string message, std::string hint = {});
+  void append(const Diagnostics& other);
+
+  const std::vector<Diagnostic>& errors() const { return errors_; }
+  const std::vector<Diagnostic>& warnings() const { return warnings_; }
+  bool ok() const { return errors_.empty(); }
+
+ private:
+  std::vector<Diagnostic> errors_;
+  std::vector<Diagnostic> warnings_;
+};
+
+// Thrown by the convenience API (lamina::load) when a file has user mistakes; carries all of them.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(std::vector<Diagnostic> diagnostics);
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  const Diagnostic& first() const { return diagnostics_.front(); }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+// JSON pointer helpers (RFC 6901 escaping of '~' and '/').
+std::string pointer_append(std::string_view base, std::string_view token);
+std::string pointer_append(std::string_view base, size_t index);
+
+// The closest candidate by edit distance, or "" when nothing is close enough to suggest.
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+// "a, b or c" for messages.
+std::string join_alternatives(const std::vector<std::string>& words);
+
+}  // namespace lamina

@@ -1,0 +1,93 @@
+#include "graph/json_write.h"
+
+#include <nlohmann/json.hpp>
+
+#include "graph/number_text.h"
+
+namespace lamina {
+
+namespace {
+
+std::string quoted(const std::string& text) { return nlohmann::json(text).dump(); }
+
+class Writer {
+ public:
+  explicit Writer(const NodeRegistry& registry) : registry_(registry) {}
+
+  std::string write(const Document& doc) {
+    out_ = "{\n";
+    std::vector<std::string> fields;
+    if (doc.schema) fields.push_back(key(1, "$schema") + quoted(*doc.schema));
+    fields.push_back(key(1, "format") + std::to_string(doc.format));
+    std::string materials = key(1, "materials") + "[";
+    for (size_t i = 0; i < doc.materials.size(); ++i)
+      materials += (i ? ",\n" : "\n") + indent(2) + material(doc.materials[i]);
+    materials += "\n" + indent(1) + "]";
+    fields.push_back(materials);
+    out_ += join(fields) + "\n}\n";
+    return out_;
+  }
+
+ private:
+  static std::string indent(int level) { return std::string(static_cast<size_t>(level) * 2, ' '); }
+  static std::string key(int level, const std::string& name) { return indent(level) + quoted(name) + ": "; }
+  static std::string join(const std::vector<std::string>& fields) {
+    std::string out;
+    for (size_t i = 0; i < fields.size(); ++i) out += (i ? ",\n" : "") + fields[i];
+    return out;
+  }
+
+  std::string material(const Material& m) {
+    std::vector<std::string> fields;
+    fields.push_back(key(3, "name") + quoted(m.name));
+    if (m.class_tag) fields.push_back(key(3, "class") + quoted(*m.class_tag));
+    if (m.source) fields.push_back(key(3, "source") + quoted(*m.source));
+    if (m.notes) fields.push_back(key(3, "notes") + quoted(*m.notes));
+    fields.push_back(key(3, "surface") + quoted(to_string(m.surface)));
+    std::string nodes = key(3, "nodes") + "[";
+    for (size_t i = 0; i < m.nodes.size(); ++i) nodes += (i ? ",\n" : "\n") + indent(4) + node(m.nodes[i]);
+    nodes += m.nodes.empty() ? "]" : "\n" + indent(3) + "]";
+    fields.push_back(nodes);
+    return "{\n" + join(fields) + "\n" + indent(2) + "}";
+  }
+
+  // One node per line: nodes are short, and a changed parameter then shows as one changed line.
+  std::string node(const Node& n) {
+    std::string out = "{\"id\": " + quoted(n.id) + ", \"type\": " + quoted(n.type);
+    const NodeDecl* decl = registry_.find(n.type);
+    auto emit = [&](const Param& p) { out += ", " + quoted(p.name) + ": " + value(p.value); };
+    if (decl) {
+      for (const auto& p : decl->params)
+        for (const auto& given : n.params)
+          if (given.name == p.name) emit(given);
+    } else {
+      for (const auto& given : n.params) emit(given);
+    }
+    return out + "}";
+  }
+
+  static std::string value(const Value& v) {
+    struct Visitor {
+      std::string operator()(double d) const { return number_text(d); }
+      std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
+      std::string operator()(const Vec3d& a) const {
+        return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
+      }
+      std::string operator()(bool b) const { return b ? "true" : "false"; }
+      std::string operator()(const std::string& s) const { return quoted(s); }
+      std::string operator()(const Link& l) const { return quoted(to_string(l)); }
+    };
+    return std::visit(Visitor{}, v);
+  }
+
+  const NodeRegistry& registry_;
+  std::string out_;
+};
+
+}  // namespace
+
+std::string write_document(const Document& document, const NodeRegistry& registry) {
+  return Writer(registry).write(document);
+}
+
+}  // namespace lamina

@@ -1,0 +1,251 @@
+#include "graph/schema.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "graph/diagnostics.h"
+#include "graph/document.h"
+#include "graph/number_text.h"
+
+namespace lamina {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]*$";
+constexpr const char* kLinkPattern = "^@[A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)?$";
+
+Json ref(const std::string& name) { return Json{{"$ref", "#/$defs/" + name}}; }
+
+Json number_schema(const ParamDecl& p) {
+  Json n{{"type", "number"}};
+  if (std::isfinite(p.lo)) n[p.lo_open ? "exclusiveMinimum" : "minimum"] = p.lo;
+  if (std::isfinite(p.hi)) n["maximum"] = p.hi;
+  return n;
+}
+
+Json default_json(const Value& v) {
+  struct Visitor {
+    Json operator()(double d) const { return d; }
+    Json operator()(const Vec2d& a) const { return Json::array({a[0], a[1]}); }
+    Json operator()(const Vec3d& a) const { return Json::array({a[0], a[1], a[2]}); }
+    Json operator()(bool b) const { return b; }
+    Json operator()(const std::string& s) const { return s; }
+    Json operator()(const Link&) const { return nullptr; }
+  };
+  return std::visit(Visitor{}, v);
+}
+
+std::string describe(const ParamDecl& p) {
+  std::string text = p.doc;
+  if (!p.unit.empty()) text += " [" + p.unit + "]";
+  return text;
+}
+
+Json value_schema(const ParamDecl& p) {
+  Json s;
+  switch (p.type) {
+    case ValueType::Float: s = number_schema(p); break;
+    case ValueType::Color:
+    case ValueType::Vec3:
+    case ValueType::Vec2: {
+      size_t size = p.type == ValueType::Vec2 ? 2 : 3;
+      s = Json{{"type", "array"}, {"items", number_schema(p)}, {"minItems", size}, {"maxItems", size}};
+      break;
+    }
+    case ValueType::Bool: s = Json{{"type", "boolean"}}; break;
+    case ValueType::Enum: s = Json{{"enum", p.choices}}; break;
+    case ValueType::String: s = Json{{"type", "string"}, {"minLength", 1}}; break;
+    case ValueType::Interface:
+    case ValueType::Medium:
+    case ValueType::Stack: s = ref("link"); break;
+  }
+  if (p.linkable && !is_closure(p.type)) s = Json{{"anyOf", Json::array({s, ref("link")})}};
+  s["description"] = describe(p);
+  if (p.fallback && !std::holds_alternative<Link>(*p.fallback)) s["default"] = default_json(*p.fallback);
+  return s;
+}
+
+Json node_schema(const NodeDecl& d) {
+  Json properties;
+  properties["id"] = ref("identifier");
+  properties["type"] = Json{{"const", d.type}};
+  Json required = Json::array({"id", "type"});
+  for (const auto& p : d.params) {
+    properties[p.name] = value_schema(p);
+    if (p.required() && !d.in_alternative(p.name)) required.push_back(p.name);
+  }
+  Json s{{"description", d.doc}, {"type", "object"}, {"properties", properties}, {"required", required},
+         {"additionalProperties", false}};
+  Json all_of = Json::array();
+  Json dependent = Json::object();
+  for (const auto& alt : d.alternatives) {
+    // Members of one set come together; members of different sets exclude each other.
+    for (const auto& set : alt.sets)
+      for (const auto& member : set)
+        if (set.size() > 1) {
+          Json others = Json::array();
+          for (const auto& other : set)
+            if (other != member) others.push_back(other);
+          dependent[member] = others;
+        }
+    for (size_t a = 0; a < alt.sets.size(); ++a)
+      for (size_t b = a + 1; b < alt.sets.size(); ++b)
+        for (const auto& x : alt.sets[a])
+          for (const auto& y : alt.sets[b]) all_of.push_back(Json{{"not", Json{{"required", Json::array({x, y})}}}});
+    if (!alt.optional) {
+      Json any = Json::array();
+      for (const auto& set : alt.sets) any.push_back(Json{{"required", set}});
+      all_of.push_back(Json{{"anyOf", any}});
+    }
+  }
+  if (!dependent.empty()) s["dependentRequired"] = dependent;
+  if (!all_of.empty()) s["allOf"] = all_of;
+  return s;
+}
+
+std::string value_text(const Value& v) {
+  struct Visitor {
+    std::string operator()(double d) const { return number_text(d); }
+    std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
+    std::string operator()(const Vec3d& a) const {
+      return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
+    }
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(const std::string& s) const { return "\"" + s + "\""; }
+    std::string operator()(const Link&) const { return "(none)"; }
+  };
+  return std::visit(Visitor{}, v);
+}
+
+std::string type_text(const ParamDecl& p) {
+  std::string t(type_name(p.type));
+  if (p.type == ValueType::Enum) t = join_alternatives(p.choices);
+  if (p.linkable && !is_closure(p.type)) t += " or link";
+  if (is_closure(p.type)) t = "link to " + t;
+  return t;
+}
+
+std::string range_cell(const ParamDecl& p) {
+  if (!p.has_range()) return "";
+  std::string r = p.range_text();
+  return r;
+}
+
+std::string default_cell(const NodeDecl& d, const ParamDecl& p) {
+  if (p.fallback) return default_text(p);
+  return d.in_alternative(p.name) ? "(alternative)" : "required";
+}
+
+}  // namespace
+
+std::string default_text(const ParamDecl& p) { return p.fallback ? value_text(*p.fallback) : ""; }
+
+std::string material_schema(const NodeRegistry& registry) {
+  Json defs;
+  defs["identifier"] = Json{{"type", "string"}, {"pattern", kIdentifierPattern}};
+  defs["link"] = Json{{"description", "a link to a node's output: \"@node_id\" or \"@node_id.output\""},
+                      {"type", "string"},
+                      {"pattern", kLinkPattern}};
+  Json node_types = Json::array();
+  Json dispatch = Json::array();
+  for (const auto& d : registry.all()) {
+    node_types.push_back(d.type);
+    std::string def = "node:" + d.type;
+    defs[def] = node_schema(d);
+    dispatch.push_back(Json{{"if", Json{{"properties", Json{{"type", Json{{"const", d.type}}}}}, {"required", {"type"}}}},
+                            {"then", ref(def)}});
+  }
+  Json node{{"type", "object"},
+            {"properties", Json{{"id", ref("identifier")}, {"type", Json{{"enum", node_types}}}}},
+            {"required", Json::array({"id", "type"})},
+            {"allOf", dispatch}};
+  defs["node"] = node;
+  Json classes = Json::array({"a", "b", "c", "d", "e", "f", "g", "h"});
+  defs["material"] = Json{
+      {"type", "object"},
+      {"properties",
+       Json{{"name", ref("identifier")},
+            {"class", Json{{"description", "the course's class a)-h); checked against the structure"}, {"enum", classes}}},
+            {"source", Json{{"type", "string"}}},
+            {"notes", Json{{"type", "string"}}},
+            {"surface", ref("link")},
+            {"nodes", Json{{"type", "array"}, {"items", ref("node")}}}}},
+      {"required", Json::array({"name", "surface", "nodes"})},
+      {"additionalProperties", false}};
+  Json schema{{"$schema", "https://json-schema.org/draft/2020-12/schema"},
+              {"$id", "urn:lamina:schema:material:1"},
+              {"title", "lamina material file"},
+              {"description",
+               "Generated by `lamina schema` from the node declarations; do not edit. The lamina checker is "
+               "stricter: it also resolves links, matches types across links, rejects cycles, duplicate ids, "
+               "non-finite numbers and missing texture files."},
+              {"type", "object"},
+              {"properties", Json{{"$schema", Json{{"type", "string"}}},
+                                  {"format", Json{{"const", kFormatVersion}}},
+                                  {"materials", Json{{"type", "array"}, {"minItems", 1}, {"items", ref("material")}}}}},
+              {"required", Json::array({"format", "materials"})},
+              {"additionalProperties", false},
+              {"$defs", defs}};
+  return schema.dump(2) + "\n";
+}
+
+std::string node_reference_text(const NodeDecl& d) {
+  std::string out = d.type + " (" + std::string(kind_name(d.kind)) + "): " + d.doc + "\n";
+  if (d.params.empty()) out += "  no parameters\n";
+  for (const auto& p : d.params) {
+    out += "  " + p.name + ": " + type_text(p);
+    if (!p.unit.empty()) out += ", " + p.unit;
+    if (p.has_range()) out += ", " + range_cell(p);
+    out += ", " + (p.fallback ? "default " + default_text(p) : default_cell(d, p)) + "\n";
+    out += "      " + p.doc + "\n";
+  }
+  for (const auto& alt : d.alternatives) {
+    std::vector<std::string> sets;
+    for (const auto& set : alt.sets) {
+      std::string s;
+      for (const auto& member : set) s += (s.empty() ? "" : " + ") + member;
+      sets.push_back(s);
+    }
+    out += std::string("  ") + (alt.optional ? "at most one of: " : "exactly one of: ") + join_alternatives(sets) + "\n";
+  }
+  out += "  outputs:";
+  for (size_t i = 0; i < d.outputs.size(); ++i)
+    out += std::string(i ? "," : "") + " " + d.outputs[i].name + " (" + std::string(type_name(d.outputs[i].type)) +
+           (i == 0 ? ", default" : "") + ")";
+  return out + "\n";
+}
+
+std::string node_reference_markdown(const NodeRegistry& registry) {
+  std::string out =
+      "# lamina node reference\n\nGenerated by `lamina schema` from the node declarations; do not edit.\n"
+      "A link is written `\"@node_id\"` (the node's first output) or `\"@node_id.output\"`.\n";
+  for (const auto& d : registry.all()) {
+    out += "\n## `" + d.type + "`\n\n" + d.doc + ".\n\n";
+    if (!d.params.empty()) {
+      out += "| parameter | type | unit | range | default | description |\n|---|---|---|---|---|---|\n";
+      for (const auto& p : d.params)
+        out += "| `" + p.name + "` | " + type_text(p) + " | " + p.unit + " | " + range_cell(p) + " | " +
+               default_cell(d, p) + " | " + p.doc + " |\n";
+      out += "\n";
+    }
+    for (const auto& alt : d.alternatives) {
+      std::vector<std::string> sets;
+      for (const auto& set : alt.sets) {
+        std::string s;
+        for (const auto& member : set) s += (s.empty() ? "" : " + ") + ("`" + member + "`");
+        sets.push_back(s);
+      }
+      out += std::string(alt.optional ? "Give at most one of " : "Give exactly one of ") + join_alternatives(sets) + ".\n\n";
+    }
+    out += "Outputs: ";
+    for (size_t i = 0; i < d.outputs.size(); ++i)
+      out += std::string(i ? ", " : "") + "`" + d.outputs[i].name + "` (" + std::string(type_name(d.outputs[i].type)) +
+             (i == 0 ? ", default" : "") + ": " + d.outputs[i].doc + ")";
+    out += ".\n";
+  }
+  return out;
+}
+
+}  // namespace lamina

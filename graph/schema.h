@@ -1,0 +1,18 @@
+// Generated documentation of the node library: the JSON Schema (2020-12) of material files and
+// the Markdown reference of every node type. Both come from the node declarations only.
+#pragma once
+
+#include <string>
+
+#include "graph/registry.h"
+
+namespace lamina {
+
+std::string material_schema(const NodeRegistry& registry = NodeRegistry::builtin());
+std::string node_reference_markdown(const NodeRegistry& registry = NodeRegistry::builtin());
+// One node type's reference as plain text for `lamina nodes TYPE`.
+std::string node_reference_text(const NodeDecl& decl);
+// The default of a parameter as JSON text ("0.0", "[1.0, 1.0]", "\"beckmann\"").
+std::string default_text(const ParamDecl& p);
+
+}  // namespace lamina

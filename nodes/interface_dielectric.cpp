@@ -1,0 +1,20 @@
+// interface/dielectric: a rough or smooth boundary into a transparent layer (course sec. 2.1).
+#include "nodes/microfacet_params.h"
+
+namespace lamina {
+
+NodeDecl declare_interface_dielectric() {
+  NodeDecl d;
+  d.type = "interface/dielectric";
+  d.kind = NodeKind::Interface;
+  d.doc = "Torrance-Sparrow boundary between the medium above and a transparent layer below";
+  d.params.push_back(param("ior", ValueType::Float)
+                         .range(1.0, 4.0)
+                         .links()
+                         .described("absolute index of refraction of the layer below the boundary"));
+  add_microfacet_params(d);
+  d.outputs.push_back({"interface", ValueType::Interface, "the boundary, for a layer's interface input"});
+  return d;
+}
+
+}  // namespace lamina

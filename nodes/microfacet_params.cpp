@@ -1,0 +1,24 @@
+#include "nodes/microfacet_params.h"
+
+namespace lamina {
+
+void add_microfacet_params(NodeDecl& decl) {
+  decl.params.push_back(param("roughness_deg", ValueType::Float)
+                            .range(0.0, kMaxRoughnessDeg)
+                            .in_unit("degrees")
+                            .or_default(0.0)
+                            .links()
+                            .described("RMS microfacet slope angle; 0 is the smooth limit, 26-30 is very rough"));
+  decl.params.push_back(param("alpha", ValueType::Float)
+                            .range(0.0, kMaxAlpha)
+                            .or_default(0.0)
+                            .links()
+                            .described("RMS microfacet slope m = tan(roughness_deg); give this or roughness_deg"));
+  decl.params.push_back(param("distribution", ValueType::Enum)
+                            .one_of({"beckmann", "blinn", "ggx"})
+                            .or_default(std::string("beckmann"))
+                            .described("microfacet distribution: Beckmann, normalised Blinn (e = 2/m^2 - 2) or GGX"));
+  decl.alternatives.push_back({{{"roughness_deg"}, {"alpha"}}, true});
+}
+
+}  // namespace lamina

@@ -1,0 +1,16 @@
+// Roughness and distribution parameters shared by every microfacet node (interfaces, conductors).
+#pragma once
+
+#include "graph/node_decl.h"
+
+namespace lamina {
+
+// Course convention: roughness is the RMS microfacet slope angle; m = tan(roughness_deg).
+// 45 degrees (m = 1) bounds both forms; the course's roughest example is 35 degrees.
+inline constexpr double kMaxRoughnessDeg = 45.0;
+inline constexpr double kMaxAlpha = 1.0;
+
+// Adds roughness_deg | alpha (at most one; default: smooth) and distribution to `decl`.
+void add_microfacet_params(NodeDecl& decl);
+
+}  // namespace lamina

@@ -1,0 +1,36 @@
+// substrate/conductor: a rough metal, Torrance-Sparrow with the exact conductor Fresnel term
+// (course sec. 2.1). Metals are opaque, so a conductor is always the bottom of a stack.
+#include "nodes/metals.h"
+#include "nodes/microfacet_params.h"
+
+namespace lamina {
+
+static std::vector<std::string> metal_names() {
+  std::vector<std::string> names;
+  for (const auto& m : metals()) names.emplace_back(m.name);
+  return names;
+}
+
+NodeDecl declare_substrate_conductor() {
+  NodeDecl d;
+  d.type = "substrate/conductor";
+  d.kind = NodeKind::Substrate;
+  d.doc = "rough metal base: a named metal or its complex index of refraction n + ik per channel";
+  d.params.push_back(param("metal", ValueType::Enum)
+                         .one_of(metal_names())
+                         .described("a named metal with tabulated n and k; give this or n and k"));
+  d.params.push_back(param("n", ValueType::Color)
+                         .above(0.0)
+                         .links()
+                         .described("real part of the metal's index of refraction per channel"));
+  d.params.push_back(param("k", ValueType::Color)
+                         .at_least(0.0)
+                         .links()
+                         .described("extinction coefficient (imaginary part of the index) per channel"));
+  add_microfacet_params(d);
+  d.alternatives.push_back({{{"metal"}, {"n", "k"}}, false});
+  d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
+  return d;
+}
+
+}  // namespace lamina

@@ -1,0 +1,70 @@
+// lamina classify FILE|DIR...: the course's class a)-h) of each material, with the reason.
+#include <iomanip>
+#include <iostream>
+
+#include "graph/load.h"
+#include "tools/commands.h"
+
+namespace lamina::cli {
+
+namespace {
+
+struct ClassifyOptions {
+  std::vector<std::string> inputs;
+};
+
+int run_classify(const ClassifyOptions& o) {
+  std::vector<std::filesystem::path> files;
+  try {
+    files = expand_inputs(o.inputs);
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  }
+  int code = kExitOk;
+  size_t agree = 0, tagged = 0;
+  for (const auto& file : files) {
+    CheckedFile checked;
+    try {
+      checked = check_file(file);
+    } catch (const IoError& e) {
+      std::cerr << "lamina: " << e.what() << "\n";
+      code = kExitIo;
+      continue;
+    }
+    if (!checked.ok()) {
+      for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
+      if (code == kExitOk) code = kExitInvalid;
+      continue;
+    }
+    for (size_t i = 0; i < checked.document.materials.size(); ++i) {
+      const Material& m = checked.document.materials[i];
+      Classification c = classify(*checked.graphs[i]);
+      std::string label = c.letter.empty() ? c.name : c.letter + ") " + c.name;
+      std::string tag = "untagged";
+      if (m.class_tag) {
+        ++tagged;
+        bool ok = std::find(c.accepted.begin(), c.accepted.end(), *m.class_tag) != c.accepted.end();
+        agree += ok ? 1 : 0;
+        tag = "tag " + *m.class_tag + (ok ? " agrees" : " DISAGREES");
+      }
+      std::cout << std::left << std::setw(24) << m.name << " " << std::setw(20) << label << " " << std::setw(16)
+                << tag << " " << c.reason << "\n";
+    }
+  }
+  if (tagged > 0) std::cout << agree << " of " << tagged << " class tags agree with the structure\n";
+  return code;
+}
+
+}  // namespace
+
+void add_classify(CLI::App& app, Runner& runner) {
+  auto o = std::make_shared<ClassifyOptions>();
+  auto* cmd = app.add_subcommand("classify", "Print each material's course class a)-h) and the reason");
+  cmd->add_option("inputs", o->inputs, "material files, or directories searched for *.json")->required();
+  cmd->footer("Tops and bases are smooth below 5 degrees RMS slope; a varnish is tinted when it absorbs more "
+              "than 1% at normal incidence.");
+  cmd->callback([o, &runner] { runner = [o] { return run_classify(*o); }; });
+}
+
+}  // namespace lamina::cli
