@@ -152,6 +152,11 @@ class Reader {
                 syntax_reason(e.what()),
             "NaN, Infinity, comments and trailing commas are not JSON");
       return doc;
+    } catch (const Json::out_of_range& e) {
+      // nlohmann refuses numbers beyond the double range (error 406) rather than returning inf.
+      error(tracker.pointer(), "number is not finite: it overflows the range of a double (about 1.8e308)",
+            "write a finite number");
+      return doc;
     }
     for (const auto& pointer : duplicates)
       error(pointer, "duplicate key: JSON keeps only one of the two values", "remove one of them");
@@ -327,7 +332,7 @@ class Reader {
     // Parameters in declaration order, so that a document reads back exactly as it writes.
     for (const auto& [key, value] : j.items()) {
       if (key == "id" || key == "type" || decl->find_param(key)) continue;
-      report_unknown_param(*decl, key, pointer);
+      report_unknown_param(*decl, n.id, key, pointer);
     }
     for (const auto& p : decl->params) {
       auto it = j.find(p.name);
@@ -338,12 +343,12 @@ class Reader {
     return n;
   }
 
-  void report_unknown_param(const NodeDecl& decl, const std::string& key, const std::string& pointer) {
+  void report_unknown_param(const NodeDecl& decl, const std::string& id, const std::string& key,
+                            const std::string& pointer) {
     std::string at = pointer_append(pointer, key);
     if (decl.kind == NodeKind::Substrate && key == "base") {
       error(at, "a substrate is opaque: it is always the bottom of a stack and cannot lie on a base",
-            "put a layer on top of it instead: {\"type\": \"layer\", \"interface\": ..., \"base\": \"@" +
-                std::string("this_substrate") + "\"}");
+            "put a layer over it instead: {\"type\": \"layer\", \"interface\": ..., \"base\": \"@" + id + "\"}");
       return;
     }
     std::string suggestion = closest_match(key, decl.param_names());

@@ -1,0 +1,49 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "graph/registry.h"
+#include "graph/schema.h"
+#include "test_support.h"
+
+using namespace lamina;
+
+TEST_CASE("the committed schema and node reference are exactly what lamina schema generates") {
+  // Regenerate with: build/release/lamina schema -o schema
+  CHECK(test::read_file(test::source_dir() / "schema/material.schema.json") == material_schema());
+  CHECK(test::read_file(test::source_dir() / "schema/nodes.md") == node_reference_markdown());
+}
+
+TEST_CASE("the schema declares every node type with its parameters and nothing else") {
+  auto schema = nlohmann::json::parse(material_schema());
+  CHECK(schema["$schema"] == "https://json-schema.org/draft/2020-12/schema");
+  const auto& defs = schema["$defs"];
+  for (const auto& d : NodeRegistry::builtin().all()) {
+    CAPTURE(d.type);
+    const auto& node = defs.at("node:" + d.type);
+    CHECK(node["additionalProperties"] == false);
+    CHECK(node["properties"]["type"]["const"] == d.type);
+    CHECK(node["properties"].size() == d.params.size() + 2);
+    for (const auto& p : d.params) {
+      CAPTURE(p.name);
+      const auto& prop = node["properties"].at(p.name);
+      CHECK(prop["description"].get<std::string>().find(p.doc) == 0);
+      bool listed = std::find(node["required"].begin(), node["required"].end(), p.name) != node["required"].end();
+      CHECK(listed == (p.required() && !d.in_alternative(p.name)));
+    }
+  }
+  auto types = defs["node"]["properties"]["type"]["enum"];
+  CHECK(types.size() == NodeRegistry::builtin().all().size());
+}
+
+TEST_CASE("the node reference lists every parameter with its unit and range") {
+  std::string reference = node_reference_markdown();
+  CHECK(reference.find("| `thickness` | float or link | micrometres | 0.0 <= thickness <= 10000.0 |") !=
+        std::string::npos);
+  CHECK(reference.find("Give exactly one of `metal` or `n` + `k`.") != std::string::npos);
+  const auto* dielectric = NodeRegistry::builtin().find("interface/dielectric");
+  std::string text = node_reference_text(*dielectric);
+  CHECK(text.find("ior: float or link, 1.0 <= ior <= 4.0, required") != std::string::npos);
+  CHECK(text.find("distribution: beckmann, blinn or ggx, default \"beckmann\"") != std::string::npos);
+}

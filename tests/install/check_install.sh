@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the built lamina into a temporary prefix, builds examples/api against it with
+# find_package(lamina) and runs it on an example. Usage: check_install.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1
+source=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+test -x "$work/prefix/bin/lamina"
+test -f "$work/prefix/include/lamina/graph/load.h"
+test -f "$work/prefix/share/lamina/schema/material.schema.json"
+"$work/prefix/bin/lamina" --version
+cmake -S "$source/examples/api" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/consumer" >/dev/null
+output=$("$work/consumer/lamina_api_example" "$source/examples/materials/car_paint.json")
+echo "$output"
+[ "$output" = "car_paint: e) metallic paint" ]

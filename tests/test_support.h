@@ -1,0 +1,35 @@
+// Paths and helpers shared by the test suites.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lamina::test {
+
+std::filesystem::path source_dir();
+std::vector<std::filesystem::path> example_files();  // examples/materials/*.json, sorted
+std::string read_file(const std::filesystem::path& path);
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+// Runs the lamina CLI with `args` (already shell-quoted where needed) in `working_dir`.
+RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir = {});
+
+// A fresh empty directory under the system temp dir, removed by the destructor.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace lamina::test

@@ -1,0 +1,107 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "graph/schema.h"
+#include "test_support.h"
+
+using namespace lamina;
+
+namespace {
+
+std::vector<std::string> listing(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) names.push_back(e.path().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("lamina validate accepts every example and exits 0") {
+  auto r = test::run_cli("validate examples/materials", test::source_dir());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.find("17 of 17 files valid") != std::string::npos);
+}
+
+TEST_CASE("lamina validate exits 2 on every broken file, prints its pointer and writes nothing") {
+  auto manifest = nlohmann::json::parse(test::read_file(test::source_dir() / "tests/data/bad/cases.json"));
+  test::TempDir dir;
+  std::filesystem::copy(test::source_dir() / "tests/data/bad", dir.path());
+  auto before = listing(dir.path());
+  for (const auto& c : manifest) {
+    std::string file = c.at("file");
+    std::string pointer = c.at("pointer");
+    CAPTURE(file);
+    auto r = test::run_cli("validate " + file, dir.path());
+    INFO(r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(file + ":" + (pointer.empty() ? "/" : pointer) + ": ") != std::string::npos);
+    CHECK(r.err.find(c.at("message").get<std::string>()) != std::string::npos);
+  }
+  CHECK(listing(dir.path()) == before);
+}
+
+TEST_CASE("lamina validate reports I/O problems with exit 1 and gives a JSON report on request") {
+  auto missing = test::run_cli("validate no/such/file.json", test::source_dir());
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.err.find("no/such/file.json: no such file or directory") != std::string::npos);
+
+  auto json = test::run_cli("validate --json tests/data/bad/ior_below_one.json examples/materials/car_paint.json",
+                            test::source_dir());
+  CHECK(json.exit_code == 2);
+  auto report = nlohmann::json::parse(json.out);
+  REQUIRE(report.size() == 2);
+  CHECK(report[0]["valid"] == false);
+  CHECK(report[0]["diagnostics"][0]["pointer"] == "/materials/0/nodes/1/ior");
+  CHECK(report[1]["valid"] == true);
+}
+
+TEST_CASE("lamina classify prints each course example's class") {
+  auto r = test::run_cli("classify examples/materials", test::source_dir());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("car_paint                e) metallic paint") != std::string::npos);
+  CHECK(r.out.find("house_paint              h) multi-layer") != std::string::npos);
+  CHECK(r.out.find("15 of 15 class tags agree with the structure") != std::string::npos);
+  CHECK(r.out.find("DISAGREES") == std::string::npos);
+}
+
+TEST_CASE("lamina nodes lists the types and explains one; an unknown type exits 2") {
+  auto all = test::run_cli("nodes");
+  CHECK(all.exit_code == 0);
+  CHECK(all.out.find("substrate/conductor") != std::string::npos);
+  auto one = test::run_cli("nodes medium/absorbing");
+  CHECK(one.exit_code == 0);
+  CHECK(one.out.find("thickness: float or link, micrometres") != std::string::npos);
+  auto unknown = test::run_cli("nodes medium/absorbin");
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.err.find("did you mean 'medium/absorbing'?") != std::string::npos);
+}
+
+TEST_CASE("lamina schema writes the generated schema and reference") {
+  test::TempDir dir;
+  auto r = test::run_cli("schema -o '" + (dir.path() / "out").string() + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(test::read_file(dir.path() / "out/material.schema.json") == material_schema());
+  CHECK(test::read_file(dir.path() / "out/nodes.md") == node_reference_markdown());
+}
+
+TEST_CASE("every command has --help, the tool has --version, and a bad command line exits 2") {
+  for (const char* command : {"", "validate ", "classify ", "nodes ", "schema "}) {
+    CAPTURE(command);
+    auto r = test::run_cli(std::string(command) + "--help");
+    CHECK(r.exit_code == 0);
+    CHECK(r.out.find("Usage:") != std::string::npos);
+  }
+  auto version = test::run_cli("--version");
+  CHECK(version.exit_code == 0);
+  CHECK(version.out == std::string("lamina ") + LAMINA_VERSION + "\n");
+  CHECK(test::run_cli("").exit_code == 2);
+  CHECK(test::run_cli("frobnicate").exit_code == 2);
+  CHECK(test::run_cli("validate").exit_code == 2);
+  CHECK(test::run_cli("schema").exit_code == 2);
+}

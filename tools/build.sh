@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Configures and builds one variant of lamina: `release` (optimised) or `asan` (AddressSanitizer
+# and UndefinedBehaviorSanitizer). Usage: tools/build.sh [release|asan]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+variant=${1:-release}
+case "$variant" in
+  release) flags=(-DCMAKE_BUILD_TYPE=Release) ;;
+  asan) flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DLAMINA_SANITIZE=ON) ;;
+  *) echo "usage: tools/build.sh [release|asan]" >&2; exit 2 ;;
+esac
+cmake -S . -B "build/$variant" -G Ninja "${flags[@]}" >/dev/null
+cmake --build "build/$variant" -j "$(nproc)"
