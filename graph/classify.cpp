@@ -9,8 +9,8 @@
 namespace lamina {
 
 std::string class_name(const std::string& letter) {
-  static const char* names[] = {"glossy paint",    "tinted glazing", "frosted paint", "metal foil",
-                                "metallic paint",  "frosted metal",  "patina",        "multi-layer"};
+  static const char* names[] = {"glossy paint",   "tinted glazing", "frosted paint", "metal foil",
+                                "metallic paint", "frosted metal",  "patina",        "multi-layer"};
   if (letter.size() != 1 || letter[0] < 'a' || letter[0] > 'h') return "unclassified";
   return names[letter[0] - 'a'];
 }
@@ -31,11 +31,15 @@ Roughness roughness_of(const Graph& g, size_t i) {
   const Node& n = g.node(i);
   Roughness r;
   if (const Value* v = n.find("roughness_deg")) {
-    if (const double* d = std::get_if<double>(v)) r.degrees = *d;
-    else r.textured = true;
+    if (const double* d = std::get_if<double>(v))
+      r.degrees = *d;
+    else
+      r.textured = true;
   } else if (const Value* a = n.find("alpha")) {
-    if (const double* d = std::get_if<double>(a)) r.degrees = std::atan(*d) * 180.0 / std::numbers::pi;
-    else r.textured = true;
+    if (const double* d = std::get_if<double>(a))
+      r.degrees = std::atan(*d) * 180.0 / std::numbers::pi;
+    else
+      r.textured = true;
   }
   return r;
 }
@@ -71,17 +75,22 @@ struct Path {
   size_t substrate;
 };
 
-void collect_paths(const Graph& g, size_t at, std::vector<size_t> layers, std::vector<Path>& paths) {
+// Returns false when a structural input is missing (only possible in a graph built from a
+// document with errors).
+bool collect_paths(const Graph& g, size_t at, std::vector<size_t> layers, std::vector<Path>& paths) {
   while (g.decl(at).kind == NodeKind::Layer) {
+    auto base = g.linked(at, "base");
+    if (!base || !g.linked(at, "interface")) return false;
     layers.push_back(at);
-    at = *g.linked(at, "base");
+    at = *base;
   }
   if (g.decl(at).kind == NodeKind::Mix) {
-    collect_paths(g, *g.linked(at, "a"), layers, paths);
-    collect_paths(g, *g.linked(at, "b"), layers, paths);
-    return;
+    auto a = g.linked(at, "a");
+    auto b = g.linked(at, "b");
+    return a && b && collect_paths(g, *a, layers, paths) && collect_paths(g, *b, layers, paths);
   }
   paths.push_back({std::move(layers), at});
+  return true;
 }
 
 Classification classify_path(const Graph& g, const Path& path) {
@@ -111,7 +120,8 @@ Classification classify_path(const Graph& g, const Path& path) {
 
 Classification classify(const Graph& graph) {
   std::vector<Path> paths;
-  collect_paths(graph, graph.surface(), {}, paths);
+  if (!collect_paths(graph, graph.surface(), {}, paths))
+    return {"", "incomplete stack", "a layer or mix lacks a structural input", {}};
   std::vector<Classification> parts;
   for (const auto& path : paths) parts.push_back(classify_path(graph, path));
   bool uniform = std::all_of(parts.begin(), parts.end(),

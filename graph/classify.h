@@ -18,9 +18,9 @@ inline constexpr double kSmoothBelowDeg = 5.0;
 inline constexpr double kTintedAbsorbs = 0.01;
 
 struct Classification {
-  std::string letter;  // "a".."h"; "" for a bare substrate or a mix of two classes
-  std::string name;    // "metallic paint", "mix of b) and e)", "unlayered substrate"
-  std::string reason;  // the decision, with the numbers it used
+  std::string letter;                 // "a".."h"; "" for a bare substrate or a mix of two classes
+  std::string name;                   // "metallic paint", "mix of b) and e)", "unlayered substrate"
+  std::string reason;                 // the decision, with the numbers it used
   std::vector<std::string> accepted;  // class tags that agree with the structure
 };
 

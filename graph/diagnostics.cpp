@@ -18,8 +18,7 @@ void Diagnostics::error(std::string file, std::string pointer, std::string messa
 }
 
 void Diagnostics::warning(std::string file, std::string pointer, std::string message, std::string hint) {
-  warnings_.push_back(
-      {Severity::Warning, std::move(file), std::move(pointer), std::move(message), std::move(hint)});
+  warnings_.push_back({Severity::Warning, std::move(file), std::move(pointer), std::move(message), std::move(hint)});
 }
 
 void Diagnostics::append(const Diagnostics& other) {
@@ -38,9 +37,12 @@ std::string pointer_append(std::string_view base, std::string_view token) {
   std::string out(base);
   out += '/';
   for (char c : token) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }

@@ -15,7 +15,7 @@ struct Diagnostic {
   std::string file;
   std::string pointer;  // RFC 6901, "" is the whole document
   std::string message;
-  std::string hint;     // optional: what to write instead
+  std::string hint;  // optional: what to write instead
 };
 
 // "file:pointer: message (hint)" -- the one format the CLI prints.

@@ -41,7 +41,7 @@ struct Material {
 inline constexpr int kFormatVersion = 1;
 
 struct Document {
-  std::string path;  // where it was read from; not part of the content
+  std::string path;                   // where it was read from; not part of the content
   std::optional<std::string> schema;  // "$schema", kept so editors keep their completion
   int format = kFormatVersion;
   std::vector<Material> materials;

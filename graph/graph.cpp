@@ -110,8 +110,8 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
     }
     if (output->type != expected) {
       if (is_closure(expected) || is_closure(output->type)) {
-        error(pointer, what + " must be " + describe_expected(expected) + ", but '" + link.node + "' is " +
-                           source.type);
+        error(pointer,
+              what + " must be " + describe_expected(expected) + ", but '" + link.node + "' is " + source.type);
       } else {
         std::vector<std::string> fitting;
         for (const auto& o : source.outputs)

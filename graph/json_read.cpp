@@ -79,8 +79,10 @@ class PathTracker {
   std::string pointer() const {
     std::string out;
     for (const auto& f : stack_) {
-      if (f.array) out = pointer_append(out, f.index);
-      else if (f.has_key) out = pointer_append(out, f.key);
+      if (f.array)
+        out = pointer_append(out, f.index);
+      else if (f.has_key)
+        out = pointer_append(out, f.key);
     }
     return out;
   }
@@ -145,12 +147,18 @@ class Reader {
         return tracker.on_event(depth, event, parsed);
       });
     } catch (const Json::parse_error& e) {
+      if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+        error("", "the file is empty", "a material file is a JSON object with \"format\" and \"materials\"");
+        return doc;
+      }
       size_t line = 0, column = 0;
       line_and_column(text, e.byte, line, column);
+      bool at_end = e.byte >= text.size();
       error(tracker.pointer(),
             "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " +
                 syntax_reason(e.what()),
-            "NaN, Infinity, comments and trailing commas are not JSON");
+            at_end ? "the file ends early: is it truncated, or is a bracket left open?"
+                   : "NaN, Infinity, comments and trailing commas are not JSON");
       return doc;
     } catch (const Json::out_of_range& e) {
       // nlohmann refuses numbers beyond the double range (error 406) rather than returning inf.
@@ -167,13 +175,16 @@ class Reader {
     }
     check_keys(root, "", {"$schema", "format", "materials"});
     if (auto it = root.find("$schema"); it != root.end()) {
-      if (it->is_string()) doc.schema = it->get<std::string>();
-      else error("/$schema", "expected a string (the schema's path or URI), found " + json_kind(*it));
+      if (it->is_string())
+        doc.schema = it->get<std::string>();
+      else
+        error("/$schema", "expected a string (the schema's path or URI), found " + json_kind(*it));
     }
     read_format(root, doc);
     auto materials = root.find("materials");
     if (materials == root.end()) {
-      error("", "missing \"materials\"", "add \"materials\": [ { \"name\": ..., \"surface\": ..., \"nodes\": [...] } ]");
+      error("", "missing \"materials\"",
+            "add \"materials\": [ { \"name\": ..., \"surface\": ..., \"nodes\": [...] } ]");
     } else if (!materials->is_array()) {
       error("/materials", "expected an array of materials, found " + json_kind(*materials));
     } else if (materials->empty()) {
@@ -186,8 +197,8 @@ class Reader {
         if (!m.name.empty()) {
           auto [at, inserted] = seen.emplace(m.name, i);
           if (!inserted)
-            error(pointer + "/name", "duplicate material name '" + m.name + "' (also /materials/" +
-                                         std::to_string(at->second) + ")");
+            error(pointer + "/name",
+                  "duplicate material name '" + m.name + "' (also /materials/" + std::to_string(at->second) + ")");
         }
         doc.materials.push_back(std::move(m));
       }
@@ -222,8 +233,11 @@ class Reader {
     }
     double version = it->get<double>();
     if (version != kFormatVersion) {
-      error("/format", "unsupported format " + number_text(version) + ": this lamina reads format " +
-                           std::to_string(kFormatVersion));
+      std::string written = version == std::floor(version) && std::abs(version) < 1e15
+                                ? std::to_string(static_cast<long long>(version))
+                                : number_text(version);
+      error("/format",
+            "unsupported format " + written + ": this lamina reads format " + std::to_string(kFormatVersion));
       return;
     }
     doc.format = kFormatVersion;
@@ -275,6 +289,8 @@ class Reader {
       error(pointer, "missing \"nodes\"", "add \"nodes\": [ ... ]");
     } else if (!nodes->is_array()) {
       error(pointer + "/nodes", "expected an array of nodes, found " + json_kind(*nodes));
+    } else if (nodes->empty()) {
+      error(pointer + "/nodes", "the material has no nodes", "a material needs at least a substrate");
     } else {
       std::map<std::string, size_t> seen;
       for (size_t i = 0; i < nodes->size(); ++i) {
@@ -283,8 +299,8 @@ class Reader {
         if (!n.id.empty()) {
           auto [at, inserted] = seen.emplace(n.id, i);
           if (!inserted)
-            error(node_pointer + "/id", "duplicate node id '" + n.id + "' (also " + pointer + "/nodes/" +
-                                            std::to_string(at->second) + ")");
+            error(node_pointer + "/id",
+                  "duplicate node id '" + n.id + "' (also " + pointer + "/nodes/" + std::to_string(at->second) + ")");
         }
         m.nodes.push_back(std::move(n));
       }
@@ -306,8 +322,8 @@ class Reader {
     if (auto id = j.find("id"); id == j.end()) {
       error(pointer, "missing \"id\"", "links name nodes by id, e.g. \"id\": \"varnish\"");
     } else if (!id->is_string() || !is_identifier(id->get<std::string>())) {
-      error(pointer + "/id", "expected an id of letters, digits and '_' not starting with a digit, found " +
-                                 describe(*id));
+      error(pointer + "/id",
+            "expected an id of letters, digits and '_' not starting with a digit, found " + describe(*id));
     } else {
       n.id = id->get<std::string>();
     }
@@ -352,10 +368,11 @@ class Reader {
       return;
     }
     std::string suggestion = closest_match(key, decl.param_names());
-    std::string hint = suggestion.empty() ? (decl.params.empty() ? decl.type + " takes no parameters"
-                                                                  : "parameters of " + decl.type + ": " +
-                                                                        join_alternatives(decl.param_names()))
-                                          : "did you mean \"" + suggestion + "\"?";
+    std::string hint =
+        suggestion.empty()
+            ? (decl.params.empty() ? decl.type + " takes no parameters"
+                                   : "parameters of " + decl.type + ": " + join_alternatives(decl.param_names()))
+            : "did you mean \"" + suggestion + "\"?";
     error(at, "unknown parameter \"" + key + "\" for " + decl.type, hint);
   }
 
@@ -372,7 +389,8 @@ class Reader {
         size_t present = 0;
         for (const auto& member : set) present += j.contains(member) ? 1 : 0;
         std::string description;
-        for (const auto& member : set) description += (description.empty() ? "" : " and ") + std::string("\"") + member + "\"";
+        for (const auto& member : set)
+          description += (description.empty() ? "" : " and ") + std::string("\"") + member + "\"";
         descriptions.push_back(description);
         if (present == set.size()) {
           present_sets.push_back(s);
@@ -416,8 +434,9 @@ class Reader {
       }
     }
     auto expected = [&](const std::string& what) {
-      error(pointer, "expected " + what + (p.linkable && !is_closure(p.type) ? " or a link \"@node\"" : "") +
-                         ", found " + describe(j),
+      error(pointer,
+            "expected " + what + (p.linkable && !is_closure(p.type) ? " or a link \"@node\"" : "") + ", found " +
+                describe(j),
             p.doc);
       return std::nullopt;
     };
@@ -469,8 +488,8 @@ class Reader {
         if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end()) {
           std::string suggestion = closest_match(text, p.choices);
           error(pointer, "unknown " + p.name + " \"" + text + "\"",
-                (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") + "valid values: " +
-                    join_alternatives(p.choices));
+                (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
+                    "valid values: " + join_alternatives(p.choices));
           return std::nullopt;
         }
         return Value{text};
@@ -485,8 +504,8 @@ class Reader {
       case ValueType::Interface:
       case ValueType::Medium:
       case ValueType::Stack:
-        error(pointer, "expected a link to " + std::string(type_name(p.type)) + " node such as \"@id\", found " +
-                           describe(j),
+        error(pointer,
+              "expected a link to " + std::string(type_name(p.type)) + " node such as \"@id\", found " + describe(j),
               p.doc);
         return std::nullopt;
     }

@@ -23,7 +23,11 @@ void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry
       decl->check(NodeCheckContext{m.nodes[i], file, node_pointer, out.diagnostics});
     }
   }
-  if (!all_known || m.surface.node.empty()) return;
+  // Links are resolved only when every node could be read with its id and type: against an
+  // incomplete node list they would only produce knock-on errors.
+  bool complete = all_known && !m.nodes.empty() &&
+                  std::none_of(m.nodes.begin(), m.nodes.end(), [](const Node& n) { return n.id.empty(); });
+  if (!complete || m.surface.node.empty()) return;
 
   auto graph = Graph::build(m, file, pointer, out.diagnostics, registry);
   if (!graph) return;
@@ -32,14 +36,16 @@ void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry
       out.diagnostics.warning(file, pointer + "/nodes/" + std::to_string(i),
                               "node '" + graph->node(i).id + "' does not feed the surface", "remove it or link it");
   }
-  if (m.class_tag) {
+  // The class is judged only on a material without errors: a value dropped by an error (a
+  // layer's base, say) would make the structure look different from what the author wrote.
+  if (m.class_tag && out.diagnostics.ok()) {
     Classification c = classify(*graph);
     if (std::find(c.accepted.begin(), c.accepted.end(), *m.class_tag) == c.accepted.end())
-      out.diagnostics.warning(file, pointer + "/class",
-                              "declared class " + *m.class_tag + ") " + class_name(*m.class_tag) +
-                                  " disagrees with the structure: " +
-                                  (c.letter.empty() ? c.name : c.letter + ") " + c.name),
-                              c.reason);
+      out.diagnostics.warning(
+          file, pointer + "/class",
+          "declared class " + *m.class_tag + ") " + class_name(*m.class_tag) +
+              " disagrees with the structure: " + (c.letter.empty() ? c.name : c.letter + ") " + c.name),
+          c.reason);
   }
   out.graphs[index] = std::move(graph);
 }

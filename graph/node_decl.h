@@ -25,10 +25,10 @@ struct ParamDecl {
   std::string unit;  // "" for unitless; stated in the doc tables
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;  // lo < value instead of lo <= value
-  std::optional<Value> fallback;  // the default; none: required unless part of an Alternatives
+  bool lo_open = false;              // lo < value instead of lo <= value
+  std::optional<Value> fallback;     // the default; none: required unless part of an Alternatives
   std::vector<std::string> choices;  // for ValueType::Enum
-  bool linkable = false;  // may be "@node.output" instead of a constant
+  bool linkable = false;             // may be "@node.output" instead of a constant
   std::string doc;
 
   // Builders, so that a declaration reads as one expression.

@@ -1,5 +1,6 @@
 #include "graph/schema.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -16,7 +17,7 @@ using Json = nlohmann::ordered_json;
 constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]*$";
 constexpr const char* kLinkPattern = "^@[A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)?$";
 
-Json ref(const std::string& name) { return Json{{"$ref", "#/$defs/" + name}}; }
+Json def_ref(const std::string& name) { return Json{{"$ref", "#/$defs/" + name}}; }
 
 Json number_schema(const ParamDecl& p) {
   Json n{{"type", "number"}};
@@ -59,9 +60,9 @@ Json value_schema(const ParamDecl& p) {
     case ValueType::String: s = Json{{"type", "string"}, {"minLength", 1}}; break;
     case ValueType::Interface:
     case ValueType::Medium:
-    case ValueType::Stack: s = ref("link"); break;
+    case ValueType::Stack: s = def_ref("link"); break;
   }
-  if (p.linkable && !is_closure(p.type)) s = Json{{"anyOf", Json::array({s, ref("link")})}};
+  if (p.linkable && !is_closure(p.type)) s = Json{{"anyOf", Json::array({s, def_ref("link")})}};
   s["description"] = describe(p);
   if (p.fallback && !std::holds_alternative<Link>(*p.fallback)) s["default"] = default_json(*p.fallback);
   return s;
@@ -69,38 +70,41 @@ Json value_schema(const ParamDecl& p) {
 
 Json node_schema(const NodeDecl& d) {
   Json properties;
-  properties["id"] = ref("identifier");
+  properties["id"] = def_ref("identifier");
   properties["type"] = Json{{"const", d.type}};
   Json required = Json::array({"id", "type"});
   for (const auto& p : d.params) {
     properties[p.name] = value_schema(p);
     if (p.required() && !d.in_alternative(p.name)) required.push_back(p.name);
   }
-  Json s{{"description", d.doc}, {"type", "object"}, {"properties", properties}, {"required", required},
+  Json s{{"description", d.doc},
+         {"type", "object"},
+         {"properties", properties},
+         {"required", required},
          {"additionalProperties", false}};
+  // Members of one set come together (dependentRequired); a member of one set forbids the
+  // members of the others (dependentSchemas); a required choice needs a first member of some set.
+  Json together = Json::object();
+  Json excludes = Json::object();
   Json all_of = Json::array();
-  Json dependent = Json::object();
   for (const auto& alt : d.alternatives) {
-    // Members of one set come together; members of different sets exclude each other.
-    for (const auto& set : alt.sets)
-      for (const auto& member : set)
-        if (set.size() > 1) {
-          Json others = Json::array();
-          for (const auto& other : set)
-            if (other != member) others.push_back(other);
-          dependent[member] = others;
-        }
-    for (size_t a = 0; a < alt.sets.size(); ++a)
-      for (size_t b = a + 1; b < alt.sets.size(); ++b)
-        for (const auto& x : alt.sets[a])
-          for (const auto& y : alt.sets[b]) all_of.push_back(Json{{"not", Json{{"required", Json::array({x, y})}}}});
+    for (size_t a = 0; a < alt.sets.size(); ++a) {
+      for (const auto& member : alt.sets[a]) {
+        for (const auto& other : alt.sets[a])
+          if (other != member) together[member].push_back(other);
+        for (size_t b = 0; b < alt.sets.size(); ++b)
+          if (b != a)
+            for (const auto& banned : alt.sets[b]) excludes[member]["properties"][banned] = false;
+      }
+    }
     if (!alt.optional) {
-      Json any = Json::array();
-      for (const auto& set : alt.sets) any.push_back(Json{{"required", set}});
-      all_of.push_back(Json{{"anyOf", any}});
+      Json none_given = Json::object();
+      for (const auto& set : alt.sets) none_given[set.front()] = false;
+      all_of.push_back(Json{{"not", Json{{"properties", none_given}}}});
     }
   }
-  if (!dependent.empty()) s["dependentRequired"] = dependent;
+  if (!together.empty()) s["dependentRequired"] = together;
+  if (!excludes.empty()) s["dependentSchemas"] = excludes;
   if (!all_of.empty()) s["allOf"] = all_of;
   return s;
 }
@@ -138,6 +142,16 @@ std::string default_cell(const NodeDecl& d, const ParamDecl& p) {
   return d.in_alternative(p.name) ? "(alternative)" : "required";
 }
 
+std::string alternatives_text(const Alternatives& alt, const std::string& quote) {
+  std::vector<std::string> sets;
+  for (const auto& set : alt.sets) {
+    std::string s;
+    for (const auto& member : set) s += (s.empty() ? "" : " + ") + quote + member + quote;
+    sets.push_back(s);
+  }
+  return join_alternatives(sets);
+}
+
 }  // namespace
 
 std::string default_text(const ParamDecl& p) { return p.fallback ? value_text(*p.fallback) : ""; }
@@ -152,42 +166,45 @@ std::string material_schema(const NodeRegistry& registry) {
   Json dispatch = Json::array();
   for (const auto& d : registry.all()) {
     node_types.push_back(d.type);
-    std::string def = "node:" + d.type;
+    std::string def = "node_" + d.type;
+    std::replace(def.begin(), def.end(), '/', '_');
     defs[def] = node_schema(d);
-    dispatch.push_back(Json{{"if", Json{{"properties", Json{{"type", Json{{"const", d.type}}}}}, {"required", {"type"}}}},
-                            {"then", ref(def)}});
+    dispatch.push_back(
+        Json{{"if", Json{{"properties", Json{{"type", Json{{"const", d.type}}}}}, {"required", {"type"}}}},
+             {"then", def_ref(def)}});
   }
   Json node{{"type", "object"},
-            {"properties", Json{{"id", ref("identifier")}, {"type", Json{{"enum", node_types}}}}},
+            {"properties", Json{{"id", def_ref("identifier")}, {"type", Json{{"enum", node_types}}}}},
             {"required", Json::array({"id", "type"})},
             {"allOf", dispatch}};
   defs["node"] = node;
   Json classes = Json::array({"a", "b", "c", "d", "e", "f", "g", "h"});
   defs["material"] = Json{
       {"type", "object"},
-      {"properties",
-       Json{{"name", ref("identifier")},
-            {"class", Json{{"description", "the course's class a)-h); checked against the structure"}, {"enum", classes}}},
-            {"source", Json{{"type", "string"}}},
-            {"notes", Json{{"type", "string"}}},
-            {"surface", ref("link")},
-            {"nodes", Json{{"type", "array"}, {"items", ref("node")}}}}},
+      {"properties", Json{{"name", def_ref("identifier")},
+                          {"class", Json{{"description", "the course's class a)-h); checked against the structure"},
+                                         {"enum", classes}}},
+                          {"source", Json{{"type", "string"}}},
+                          {"notes", Json{{"type", "string"}}},
+                          {"surface", def_ref("link")},
+                          {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("node")}}}}},
       {"required", Json::array({"name", "surface", "nodes"})},
       {"additionalProperties", false}};
-  Json schema{{"$schema", "https://json-schema.org/draft/2020-12/schema"},
-              {"$id", "urn:lamina:schema:material:1"},
-              {"title", "lamina material file"},
-              {"description",
-               "Generated by `lamina schema` from the node declarations; do not edit. The lamina checker is "
-               "stricter: it also resolves links, matches types across links, rejects cycles, duplicate ids, "
-               "non-finite numbers and missing texture files."},
-              {"type", "object"},
-              {"properties", Json{{"$schema", Json{{"type", "string"}}},
-                                  {"format", Json{{"const", kFormatVersion}}},
-                                  {"materials", Json{{"type", "array"}, {"minItems", 1}, {"items", ref("material")}}}}},
-              {"required", Json::array({"format", "materials"})},
-              {"additionalProperties", false},
-              {"$defs", defs}};
+  Json schema{
+      {"$schema", "https://json-schema.org/draft/2020-12/schema"},
+      {"$id", "urn:lamina:schema:material:1"},
+      {"title", "lamina material file"},
+      {"description",
+       "Generated by `lamina schema` from the node declarations; do not edit. The lamina checker is "
+       "stricter: it also resolves links, matches types across links, rejects cycles, duplicate ids, "
+       "non-finite numbers and missing texture files."},
+      {"type", "object"},
+      {"properties", Json{{"$schema", Json{{"type", "string"}}},
+                          {"format", Json{{"const", kFormatVersion}}},
+                          {"materials", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("material")}}}}},
+      {"required", Json::array({"format", "materials"})},
+      {"additionalProperties", false},
+      {"$defs", defs}};
   return schema.dump(2) + "\n";
 }
 
@@ -201,15 +218,9 @@ std::string node_reference_text(const NodeDecl& d) {
     out += ", " + (p.fallback ? "default " + default_text(p) : default_cell(d, p)) + "\n";
     out += "      " + p.doc + "\n";
   }
-  for (const auto& alt : d.alternatives) {
-    std::vector<std::string> sets;
-    for (const auto& set : alt.sets) {
-      std::string s;
-      for (const auto& member : set) s += (s.empty() ? "" : " + ") + member;
-      sets.push_back(s);
-    }
-    out += std::string("  ") + (alt.optional ? "at most one of: " : "exactly one of: ") + join_alternatives(sets) + "\n";
-  }
+  for (const auto& alt : d.alternatives)
+    out += std::string("  ") + (alt.optional ? "at most one of: " : "exactly one of: ") + alternatives_text(alt, "") +
+           "\n";
   out += "  outputs:";
   for (size_t i = 0; i < d.outputs.size(); ++i)
     out += std::string(i ? "," : "") + " " + d.outputs[i].name + " (" + std::string(type_name(d.outputs[i].type)) +
@@ -230,15 +241,9 @@ std::string node_reference_markdown(const NodeRegistry& registry) {
                default_cell(d, p) + " | " + p.doc + " |\n";
       out += "\n";
     }
-    for (const auto& alt : d.alternatives) {
-      std::vector<std::string> sets;
-      for (const auto& set : alt.sets) {
-        std::string s;
-        for (const auto& member : set) s += (s.empty() ? "" : " + ") + ("`" + member + "`");
-        sets.push_back(s);
-      }
-      out += std::string(alt.optional ? "Give at most one of " : "Give exactly one of ") + join_alternatives(sets) + ".\n\n";
-    }
+    for (const auto& alt : d.alternatives)
+      out += std::string(alt.optional ? "Give at most one of " : "Give exactly one of ") + alternatives_text(alt, "`") +
+             ".\n\n";
     out += "Outputs: ";
     for (size_t i = 0; i < d.outputs.size(); ++i)
       out += std::string(i ? ", " : "") + "`" + d.outputs[i].name + "` (" + std::string(type_name(d.outputs[i].type)) +

@@ -13,11 +13,12 @@ NodeDecl declare_medium_absorbing() {
                          .in_unit("micrometres")
                          .links()
                          .described("layer thickness"));
-  d.params.push_back(param("absorption", ValueType::Color)
-                         .range(0.0, 1.0e3)
-                         .in_unit("1/micrometre")
-                         .links()
-                         .described("absorption coefficient per channel: an inverse colour (red varnish absorbs green and blue)"));
+  d.params.push_back(
+      param("absorption", ValueType::Color)
+          .range(0.0, 1.0e3)
+          .in_unit("1/micrometre")
+          .links()
+          .described("absorption coefficient per channel: an inverse colour (red varnish absorbs green and blue)"));
   d.outputs.push_back({"medium", ValueType::Medium, "the bulk, for a layer's medium input"});
   return d;
 }

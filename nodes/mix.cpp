@@ -9,10 +9,8 @@ NodeDecl declare_mix() {
   d.type = "mix";
   d.kind = NodeKind::Mix;
   d.doc = "blend of two stacks: (1 - weight) * a + weight * b";
-  d.params.push_back(param("weight", ValueType::Float)
-                         .range(0.0, 1.0)
-                         .links()
-                         .described("blend factor: 0 shows a, 1 shows b"));
+  d.params.push_back(
+      param("weight", ValueType::Float).range(0.0, 1.0).links().described("blend factor: 0 shows a, 1 shows b"));
   d.params.push_back(param("a", ValueType::Stack).links().described("the stack where weight is 0"));
   d.params.push_back(param("b", ValueType::Stack).links().described("the stack where weight is 1"));
   d.outputs.push_back({"stack", ValueType::Stack, "the blended stack"});

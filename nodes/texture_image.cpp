@@ -25,7 +25,8 @@ static void check_image(const NodeCheckContext& ctx) {
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) {
     std::string why = OIIO::geterror();
-    ctx.error("file", "texture file '" + name + "' is not a readable image" + (why.empty() ? "" : ": " + why));
+    ctx.error("file", "texture file '" + name + "' is not a readable image" + (why.empty() ? "" : ": " + why),
+              "lamina reads what OpenImageIO reads: PNG, JPEG, OpenEXR, TIFF, HDR, ...");
     return;
   }
   input->close();
@@ -37,8 +38,10 @@ NodeDecl declare_texture_image() {
   d.kind = NodeKind::Texture;
   d.doc = "image file (any format OpenImageIO reads) looked up at (rotate(uv) * uv_scale + uv_offset)";
   d.params.push_back(param("file", ValueType::String).described("image path, relative to the material file"));
-  d.params.push_back(param("uv_scale", ValueType::Vec2).or_default(Vec2d{1.0, 1.0}).described("uv multiplier (tiling)"));
-  d.params.push_back(param("uv_offset", ValueType::Vec2).or_default(Vec2d{0.0, 0.0}).described("uv shift after scaling"));
+  d.params.push_back(
+      param("uv_scale", ValueType::Vec2).or_default(Vec2d{1.0, 1.0}).described("uv multiplier (tiling)"));
+  d.params.push_back(
+      param("uv_offset", ValueType::Vec2).or_default(Vec2d{0.0, 0.0}).described("uv shift after scaling"));
   d.params.push_back(param("uv_rotation_deg", ValueType::Float)
                          .range(-360.0, 360.0)
                          .in_unit("degrees")

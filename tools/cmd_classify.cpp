@@ -48,8 +48,8 @@ int run_classify(const ClassifyOptions& o) {
         agree += ok ? 1 : 0;
         tag = "tag " + *m.class_tag + (ok ? " agrees" : " DISAGREES");
       }
-      std::cout << std::left << std::setw(24) << m.name << " " << std::setw(20) << label << " " << std::setw(16)
-                << tag << " " << c.reason << "\n";
+      std::cout << std::left << std::setw(24) << m.name << " " << std::setw(20) << label << " " << std::setw(16) << tag
+                << " " << c.reason << "\n";
     }
   }
   if (tagged > 0) std::cout << agree << " of " << tagged << " class tags agree with the structure\n";
@@ -62,8 +62,9 @@ void add_classify(CLI::App& app, Runner& runner) {
   auto o = std::make_shared<ClassifyOptions>();
   auto* cmd = app.add_subcommand("classify", "Print each material's course class a)-h) and the reason");
   cmd->add_option("inputs", o->inputs, "material files, or directories searched for *.json")->required();
-  cmd->footer("Tops and bases are smooth below 5 degrees RMS slope; a varnish is tinted when it absorbs more "
-              "than 1% at normal incidence.");
+  cmd->footer(
+      "Tops and bases are smooth below 5 degrees RMS slope; a varnish is tinted when it absorbs more "
+      "than 1% at normal incidence.");
   cmd->callback([o, &runner] { runner = [o] { return run_classify(*o); }; });
 }
 

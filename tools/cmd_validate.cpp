@@ -68,8 +68,8 @@ int run_validate(const ValidateOptions& o) {
   if (o.json) {
     std::cout << report.dump(2) << "\n";
   } else if (!o.quiet) {
-    std::cout << valid << " of " << files.size() << " file" << (files.size() == 1 ? "" : "s") << " valid, "
-              << materials << " material" << (materials == 1 ? "" : "s") << ", " << warnings << " warning"
+    std::cout << valid << " of " << files.size() << " file" << (files.size() == 1 ? "" : "s") << " valid, " << materials
+              << " material" << (materials == 1 ? "" : "s") << ", " << warnings << " warning"
               << (warnings == 1 ? "" : "s") << "\n";
   }
   return code;

@@ -22,7 +22,8 @@ std::string one_layer(const std::string& top, const std::string& medium, const s
       {"id": "coat", "type": "layer", "interface": "@top", )" +
          (medium.empty() ? std::string() : R"("medium": "@tint", )") + R"("base": "@base"},
       {"id": "top", "type": "interface/dielectric", "ior": 1.5, )" +
-         top + "}," + (medium.empty() ? std::string() : R"({"id": "tint", "type": "medium/absorbing", )" + medium + "},") +
+         top + "}," +
+         (medium.empty() ? std::string() : R"({"id": "tint", "type": "medium/absorbing", )" + medium + "},") +
          R"({"id": "base", )" + base + "}]}]}";
 }
 
@@ -36,11 +37,21 @@ std::string metal(const std::string& roughness) {
 
 TEST_CASE("the course examples fall into the course's classes") {
   // Classes as the course files them (slides 62-80, ch. 4 and 5), independent of the files' tags.
-  const std::map<std::string, std::string> expected = {
-      {"acrylic_lacquer", "a"}, {"red_lacquer", "b"},   {"ceramic_glaze", "a"},       {"frosted_acrylic_paint", "c"},
-      {"sugar", "c"},           {"latex", "c"},         {"brass", "d"},               {"car_paint", "e"},
-      {"gold_metallic_paint", "e"}, {"gold_paint", "f"}, {"blue_metallic", "f"},      {"silver_paint", "g"},
-      {"house_paint", "h"},     {"christmas_orb", "d"}, {"concrete_ball", "b"}};
+  const std::map<std::string, std::string> expected = {{"acrylic_lacquer", "a"},
+                                                       {"red_lacquer", "b"},
+                                                       {"ceramic_glaze", "a"},
+                                                       {"frosted_acrylic_paint", "c"},
+                                                       {"sugar", "c"},
+                                                       {"latex", "c"},
+                                                       {"brass", "d"},
+                                                       {"car_paint", "e"},
+                                                       {"gold_metallic_paint", "e"},
+                                                       {"gold_paint", "f"},
+                                                       {"blue_metallic", "f"},
+                                                       {"silver_paint", "g"},
+                                                       {"house_paint", "h"},
+                                                       {"christmas_orb", "d"},
+                                                       {"concrete_ball", "b"}};
   size_t seen = 0;
   for (const auto& [name, letter] : expected) {
     CAPTURE(name);
@@ -71,14 +82,14 @@ TEST_CASE("roughness given as alpha is compared as the angle atan(alpha)") {
 
 TEST_CASE("a varnish is tinted when its normal-incidence round trip absorbs more than 1 percent") {
   // 1 - exp(-2 a d) = 0.01 at a d = 0.0050252; below and above.
-  CHECK(classify_text(one_layer(R"("roughness_deg": 1.0)", R"("thickness": 1.0, "absorption": [0.005, 0.0, 0.0])",
-                                kDiffuse))
+  CHECK(classify_text(
+            one_layer(R"("roughness_deg": 1.0)", R"("thickness": 1.0, "absorption": [0.005, 0.0, 0.0])", kDiffuse))
             .letter == "a");
-  CHECK(classify_text(one_layer(R"("roughness_deg": 1.0)", R"("thickness": 1.0, "absorption": [0.0, 0.0051, 0.0])",
-                                kDiffuse))
+  CHECK(classify_text(
+            one_layer(R"("roughness_deg": 1.0)", R"("thickness": 1.0, "absorption": [0.0, 0.0051, 0.0])", kDiffuse))
             .letter == "b");
-  CHECK(classify_text(one_layer(R"("roughness_deg": 1.0)", R"("thickness": 0.0, "absorption": [9.0, 9.0, 9.0])",
-                                kDiffuse))
+  CHECK(classify_text(
+            one_layer(R"("roughness_deg": 1.0)", R"("thickness": 0.0, "absorption": [9.0, 9.0, 9.0])", kDiffuse))
             .letter == "a");
 }
 

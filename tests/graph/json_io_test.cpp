@@ -77,7 +77,8 @@ TEST_CASE("integers in the file are floats after a round trip, with the same val
 }
 
 TEST_CASE("strings with quotes and unicode survive the round trip") {
-  const char* text = R"({"format": 1, "materials": [{"name": "m", "notes": "a \"quoted\" note, 5\u00b0 and a\\backslash",
+  const char* text =
+      R"({"format": 1, "materials": [{"name": "m", "notes": "a \"quoted\" note, 5\u00b0 and a\\backslash",
       "surface": "@s", "nodes": [{"id": "s", "type": "substrate/lambert", "albedo": [0.5, 0.5, 0.5]}]}]})";
   Diagnostics d;
   Document doc = read_document(text, "s.json", d);

@@ -21,7 +21,9 @@ TEST_CASE("the schema declares every node type with its parameters and nothing e
   const auto& defs = schema["$defs"];
   for (const auto& d : NodeRegistry::builtin().all()) {
     CAPTURE(d.type);
-    const auto& node = defs.at("node:" + d.type);
+    std::string def = "node_" + d.type;
+    std::replace(def.begin(), def.end(), '/', '_');
+    const auto& node = defs.at(def);
     CHECK(node["additionalProperties"] == false);
     CHECK(node["properties"]["type"]["const"] == d.type);
     CHECK(node["properties"].size() == d.params.size() + 2);

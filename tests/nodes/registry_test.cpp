@@ -11,10 +11,17 @@
 using namespace lamina;
 
 TEST_CASE("the node types this release promises are all registered") {
-  std::set<std::string> expected = {"interface/dielectric", "medium/clear",        "medium/absorbing",
-                                    "substrate/lambert",    "substrate/oren_nayar", "substrate/conductor",
-                                    "layer",                "mix",                  "texture/image",
-                                    "texture/checker",      "math/remap"};
+  std::set<std::string> expected = {"interface/dielectric",
+                                    "medium/clear",
+                                    "medium/absorbing",
+                                    "substrate/lambert",
+                                    "substrate/oren_nayar",
+                                    "substrate/conductor",
+                                    "layer",
+                                    "mix",
+                                    "texture/image",
+                                    "texture/checker",
+                                    "math/remap"};
   auto names = NodeRegistry::builtin().type_names();
   CHECK(std::set<std::string>(names.begin(), names.end()) == expected);
 }
