@@ -31,6 +31,9 @@ struct Material {
   std::optional<std::string> class_tag;  // "a".."h", the author's claim, checked against structure
   std::optional<std::string> source;
   std::optional<std::string> notes;
+  // Elek sec. 3: a point evaluation cannot blur a lower lobe seen through a rough upper
+  // interface, so each interface's roughness is raised to at least the one above it.
+  std::optional<bool> clamp_lower_roughness;  // default true
   Link surface;
   std::vector<Node> nodes;
 

@@ -259,7 +259,7 @@ class Reader {
       error(pointer, "expected a material object, found " + json_kind(j));
       return m;
     }
-    check_keys(j, pointer, {"name", "class", "source", "notes", "surface", "nodes"});
+    check_keys(j, pointer, {"name", "class", "source", "notes", "clamp_lower_roughness", "surface", "nodes"});
     if (auto name = j.find("name"); name == j.end()) {
       error(pointer, "missing \"name\"", "materials are looked up by name");
     } else if (!name->is_string() || !is_identifier(name->get<std::string>())) {
@@ -275,6 +275,12 @@ class Reader {
       m.class_tag.reset();
     }
     m.source = optional_string(j, pointer, "source");
+    if (auto clamp = j.find("clamp_lower_roughness"); clamp != j.end()) {
+      if (clamp->is_boolean())
+        m.clamp_lower_roughness = clamp->get<bool>();
+      else
+        error(pointer + "/clamp_lower_roughness", "expected true or false, found " + json_kind(*clamp));
+    }
     m.notes = optional_string(j, pointer, "notes");
 
     if (auto surface = j.find("surface"); surface == j.end()) {

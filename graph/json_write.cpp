@@ -43,6 +43,8 @@ class Writer {
     if (m.class_tag) fields.push_back(key(3, "class") + quoted(*m.class_tag));
     if (m.source) fields.push_back(key(3, "source") + quoted(*m.source));
     if (m.notes) fields.push_back(key(3, "notes") + quoted(*m.notes));
+    if (m.clamp_lower_roughness)
+      fields.push_back(key(3, "clamp_lower_roughness") + (*m.clamp_lower_roughness ? "true" : "false"));
     fields.push_back(key(3, "surface") + quoted(to_string(m.surface)));
     std::string nodes = key(3, "nodes") + "[";
     for (size_t i = 0; i < m.nodes.size(); ++i) nodes += (i ? ",\n" : "\n") + indent(4) + node(m.nodes[i]);
@@ -55,7 +57,7 @@ class Writer {
   std::string node(const Node& n) {
     std::string out = "{\"id\": " + quoted(n.id) + ", \"type\": " + quoted(n.type);
     const NodeDecl* decl = registry_.find(n.type);
-    auto emit = [&](const Param& p) { out += ", " + quoted(p.name) + ": " + value(p.value); };
+    auto emit = [&](const Param& p) { out += ", " + quoted(p.name) + ": " + value_json(p.value); };
     if (decl) {
       for (const auto& p : decl->params)
         for (const auto& given : n.params)
@@ -66,25 +68,25 @@ class Writer {
     return out + "}";
   }
 
-  static std::string value(const Value& v) {
-    struct Visitor {
-      std::string operator()(double d) const { return number_text(d); }
-      std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
-      std::string operator()(const Vec3d& a) const {
-        return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
-      }
-      std::string operator()(bool b) const { return b ? "true" : "false"; }
-      std::string operator()(const std::string& s) const { return quoted(s); }
-      std::string operator()(const Link& l) const { return quoted(to_string(l)); }
-    };
-    return std::visit(Visitor{}, v);
-  }
-
   const NodeRegistry& registry_;
   std::string out_;
 };
 
 }  // namespace
+
+std::string value_json(const Value& v) {
+  struct Visitor {
+    std::string operator()(double d) const { return number_text(d); }
+    std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
+    std::string operator()(const Vec3d& a) const {
+      return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
+    }
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(const std::string& s) const { return quoted(s); }
+    std::string operator()(const Link& l) const { return quoted(to_string(l)); }
+  };
+  return std::visit(Visitor{}, v);
+}
 
 std::string write_document(const Document& document, const NodeRegistry& registry) {
   return Writer(registry).write(document);

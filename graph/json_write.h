@@ -9,6 +9,9 @@
 
 namespace lamina {
 
+// One value as canonical JSON text: "1.5", "[0.5, 0.25, 0.125]", "\"ggx\"", "\"@tex.value\"".
+std::string value_json(const Value& value);
+
 std::string write_document(const Document& document, const NodeRegistry& registry = NodeRegistry::builtin());
 
 }  // namespace lamina

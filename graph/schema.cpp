@@ -6,6 +6,7 @@
 
 #include "graph/diagnostics.h"
 #include "graph/document.h"
+#include "graph/json_write.h"
 #include "graph/number_text.h"
 
 namespace lamina {
@@ -109,20 +110,6 @@ Json node_schema(const NodeDecl& d) {
   return s;
 }
 
-std::string value_text(const Value& v) {
-  struct Visitor {
-    std::string operator()(double d) const { return number_text(d); }
-    std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
-    std::string operator()(const Vec3d& a) const {
-      return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
-    }
-    std::string operator()(bool b) const { return b ? "true" : "false"; }
-    std::string operator()(const std::string& s) const { return "\"" + s + "\""; }
-    std::string operator()(const Link&) const { return "(none)"; }
-  };
-  return std::visit(Visitor{}, v);
-}
-
 std::string type_text(const ParamDecl& p) {
   std::string t(type_name(p.type));
   if (p.type == ValueType::Enum) t = join_alternatives(p.choices);
@@ -154,7 +141,11 @@ std::string alternatives_text(const Alternatives& alt, const std::string& quote)
 
 }  // namespace
 
-std::string default_text(const ParamDecl& p) { return p.fallback ? value_text(*p.fallback) : ""; }
+std::string default_text(const ParamDecl& p) {
+  if (!p.fallback) return "";
+  // An optional link's default is "not linked" (a layer without a medium is clear).
+  return std::holds_alternative<Link>(*p.fallback) ? "(none)" : value_json(*p.fallback);
+}
 
 std::string material_schema(const NodeRegistry& registry) {
   Json defs;
@@ -179,17 +170,23 @@ std::string material_schema(const NodeRegistry& registry) {
             {"allOf", dispatch}};
   defs["node"] = node;
   Json classes = Json::array({"a", "b", "c", "d", "e", "f", "g", "h"});
-  defs["material"] = Json{
-      {"type", "object"},
-      {"properties", Json{{"name", def_ref("identifier")},
-                          {"class", Json{{"description", "the course's class a)-h); checked against the structure"},
-                                         {"enum", classes}}},
-                          {"source", Json{{"type", "string"}}},
-                          {"notes", Json{{"type", "string"}}},
-                          {"surface", def_ref("link")},
-                          {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("node")}}}}},
-      {"required", Json::array({"name", "surface", "nodes"})},
-      {"additionalProperties", false}};
+  defs["material"] =
+      Json{{"type", "object"},
+           {"properties",
+            Json{{"name", def_ref("identifier")},
+                 {"class",
+                  Json{{"description", "the course's class a)-h); checked against the structure"}, {"enum", classes}}},
+                 {"source", Json{{"type", "string"}}},
+                 {"notes", Json{{"type", "string"}}},
+                 {"clamp_lower_roughness",
+                  Json{{"description",
+                        "raise each interface's roughness to at least the one above it (Elek sec. 3); default true"},
+                       {"type", "boolean"},
+                       {"default", true}}},
+                 {"surface", def_ref("link")},
+                 {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("node")}}}}},
+           {"required", Json::array({"name", "surface", "nodes"})},
+           {"additionalProperties", false}};
   Json schema{
       {"$schema", "https://json-schema.org/draft/2020-12/schema"},
       {"$id", "urn:lamina:schema:material:1"},
