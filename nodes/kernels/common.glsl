@@ -1,0 +1,33 @@
+// lamina kernels: shared constants and helpers.
+//
+// Every file in nodes/kernels/ is written once, in the common subset of GLSL (330 core, 450 core,
+// ES 3.00) and C++20 with GLM; kernels.h includes them into C++, the GLSL back end pastes them
+// verbatim after a prelude. Conventions for all kernels:
+//   - local shading frame, z is the macro normal, cos_theta(w) = w.z; directions have unit length;
+//   - wi and wo both point away from the surface; BRDFs exclude the cosine;
+//   - a direction below the horizon gives 0, and no argument produces NaN or inf: every division
+//     and square root is guarded;
+//   - m is the Beckmann RMS slope, tan of the course's roughness angle.
+// Rules of the subset: float literals carry the f suffix, conversions are explicit (float(i)),
+// no overloading, recursion, arrays, structs, default arguments, swizzle assignment or inout.
+
+// Every kernel is declared `LAMINA_FN type name(...)`: `inline` in C++ (kernels.h), empty in GLSL.
+// The GLSL prelude defines it; this default keeps the files valid GLSL on their own.
+#ifndef LAMINA_FN
+#define LAMINA_FN
+#endif
+
+const float LAMINA_PI = 3.14159265358979f;
+const float LAMINA_INV_PI = 0.318309886183791f;
+
+// The smallest denominator a kernel divides by where the true quotient may grow without bound
+// at grazing angles (1/cos): quotients stay below about 1e20 times the numerator, finite in
+// float and in GLSL highp. Not part of the pinned API; kernels use it internally.
+const float LAMINA_MIN_DENOM = 1.0e-20f;
+
+LAMINA_FN float lamina_sqr(float x) { return x * x; }
+
+// Relative luminance of linear sRGB / Rec. 709 primaries (ITU-R BT.709-6, item 3.2).
+LAMINA_FN float lamina_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+LAMINA_FN float lamina_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }

@@ -1,0 +1,58 @@
+// lamina kernels: diffuse substrates (Lambert, Oren-Nayar) and cosine-weighted sampling.
+
+// Lambert's law: a constant BRDF albedo / pi.
+LAMINA_FN vec3 lambert(vec3 albedo) { return albedo * LAMINA_INV_PI; }
+
+// The course's Oren-Nayar shader (Weidlich and Wilkie course, sec. 3.3.1, after L. Gritz; the
+// model of Oren and Nayar 1994 with its inter-reflection term) turned into a BRDF: the shader's
+// radiance (L1 + L2) divided by cos_i, times 1/pi. Symmetric in wi and wo; sigma = 0 gives
+// exactly lambert(albedo). Where the course's formula turns negative (sigma above about 0.65, both
+// directions near grazing on opposite sides of the normal) the result is clamped to 0.
+LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
+  if (wi.z <= 0.0f || wo.z <= 0.0f) return vec3(0.0f);
+  // alpha = max(theta_i, theta_o) has the smaller cosine, beta = min(theta_i, theta_o) the larger.
+  float cos_alpha = min(min(wi.z, wo.z), 1.0f);
+  float cos_beta = min(max(wi.z, wo.z), 1.0f);
+  float alpha = acos(cos_alpha);
+  float beta = acos(cos_beta);
+  float sin_alpha = lamina_safe_sqrt(1.0f - cos_alpha * cos_alpha);
+  float sin_beta = lamina_safe_sqrt(1.0f - cos_beta * cos_beta);
+  // tan(beta) from the cosine, since acos rounds up to just above pi/2 near grazing and tan would
+  // flip sign there.
+  float tan_beta = sin_beta / max(cos_beta, LAMINA_MIN_DENOM);
+  // tan((alpha + beta) / 2) = (sin alpha + sin beta) / (cos alpha + cos beta), for the same reason.
+  float tan_half_sum = (sin_alpha + sin_beta) / max(cos_alpha + cos_beta, LAMINA_MIN_DENOM);
+  // cos(phi_i - phi_o) from the projections onto the tangent plane; 0 when either is the normal.
+  float proj = lamina_safe_sqrt(wi.x * wi.x + wi.y * wi.y) * lamina_safe_sqrt(wo.x * wo.x + wo.y * wo.y);
+  float cos_phi = proj > 0.0f ? clamp((wi.x * wo.x + wi.y * wo.y) / proj, -1.0f, 1.0f) : 0.0f;
+
+  float s2 = sigma * sigma;
+  float two_beta_over_pi = 2.0f * beta * LAMINA_INV_PI;
+  // Weidlich and Wilkie course, sec. 3.3.1 (Gritz's shader):
+  // C1 = 1 - 0.5 s2 / (s2 + 0.33),
+  // C2 = 0.45 s2 / (s2 + 0.09) sin(alpha)                        if cos_phi >= 0,
+  //      0.45 s2 / (s2 + 0.09) (sin(alpha) - (2 beta / pi)^3)    otherwise,
+  // C3 = 0.125 s2 / (s2 + 0.09) (4 alpha beta / pi^2)^2.
+  float c1 = 1.0f - 0.5f * s2 / (s2 + 0.33f);
+  float c2 = 0.45f * s2 / (s2 + 0.09f) *
+             (cos_phi >= 0.0f ? sin_alpha : sin_alpha - two_beta_over_pi * two_beta_over_pi * two_beta_over_pi);
+  float c3 = 0.125f * s2 / (s2 + 0.09f) * lamina_sqr(4.0f * alpha * beta * LAMINA_INV_PI * LAMINA_INV_PI);
+  // Same section: L1 / cos_i = albedo (C1 + cos_phi C2 tan(beta) + (1 - |cos_phi|) C3 tan((alpha + beta) / 2)),
+  // L2 / cos_i = albedo^2 0.17 s2 / (s2 + 0.13) (1 - cos_phi (2 beta / pi)^2).
+  vec3 direct = albedo * (c1 + cos_phi * c2 * tan_beta + (1.0f - abs(cos_phi)) * c3 * tan_half_sum);
+  vec3 interreflected =
+      albedo * albedo * (0.17f * s2 / (s2 + 0.13f) * (1.0f - cos_phi * two_beta_over_pi * two_beta_over_pi));
+  return max(direct + interreflected, vec3(0.0f)) * LAMINA_INV_PI;
+}
+
+// Cosine-weighted hemisphere sample, z up (Malley's method: a uniform disk sample lifted to the
+// hemisphere; Pharr, Jakob and Humphreys, PBR 3rd ed., sec. 13.6.3): r = sqrt(u.x), phi = 2 pi u.y,
+// z = sqrt(1 - u.x), with density cos / pi.
+LAMINA_FN vec3 sample_cosine(vec2 u) {
+  float r = lamina_safe_sqrt(u.x);
+  float phi = 2.0f * LAMINA_PI * u.y;
+  return vec3(r * cos(phi), r * sin(phi), lamina_safe_sqrt(1.0f - u.x));
+}
+
+// Same source: p(w) = cos / pi above the horizon.
+LAMINA_FN float pdf_cosine(float cos_theta) { return cos_theta > 0.0f ? cos_theta * LAMINA_INV_PI : 0.0f; }

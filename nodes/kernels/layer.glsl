@@ -1,0 +1,55 @@
+// lamina kernels: what happens between two interfaces of the layered model (Weidlich and Wilkie
+// course, sec. 3.1.2; Elek 2010, sec. 2.2): refraction through the macro normal, the change of
+// solid angle it causes, absorption in the layer and the total-internal-reflection compensation.
+// eta is the relative index n_below / n_above of the boundary. Directions on both sides point away
+// from the boundary (z >= 0): the direction "below" is the one the layer underneath sees as its wi
+// or wo.
+
+// Refracts a direction above the boundary to the one below it, keeping the azimuth.
+// Returns vec3(0) when w is below the horizon, eta <= 0, or the ray cannot enter (total internal
+// reflection, eta < 1). Equal to -refract(-w, vec3(0, 0, 1), 1 / eta) in GLSL.
+LAMINA_FN vec3 refract_down(vec3 w, float eta) {
+  if (w.z < 0.0f || eta <= 0.0f) return vec3(0.0f);
+  float inv_eta = 1.0f / eta;
+  // Snell's law (Weidlich and Wilkie course, sec. 3.1.2, step 2): sin_below = sin_above / eta.
+  float sin2_below = (1.0f - w.z * w.z) * inv_eta * inv_eta;
+  if (sin2_below > 1.0f) return vec3(0.0f);
+  return vec3(w.x * inv_eta, w.y * inv_eta, sqrt(1.0f - sin2_below));
+}
+
+// The inverse of refract_down: a direction below the boundary to the one above it.
+// Returns vec3(0) when w is below the horizon, eta <= 0, or the ray cannot leave (total internal
+// reflection, eta > 1).
+LAMINA_FN vec3 refract_up(vec3 w, float eta) {
+  if (w.z < 0.0f || eta <= 0.0f) return vec3(0.0f);
+  // Snell's law: sin_above = eta sin_below.
+  float sin2_above = (1.0f - w.z * w.z) * eta * eta;
+  if (sin2_above > 1.0f) return vec3(0.0f);
+  return vec3(w.x * eta, w.y * eta, sqrt(1.0f - sin2_above));
+}
+
+// d omega_below / d omega_above for directions related by Snell's law. Differentiating
+// sin_above = eta sin_below gives cos_above d theta_above = eta cos_below d theta_below; with
+// d omega = sin theta d theta d phi and phi unchanged:
+// d omega_below / d omega_above = cos_above / (eta^2 cos_below) (the eta^2 radiance law of
+// Veach 1997, sec. 5.2). 0 if either cosine is <= 0 or eta <= 0; large but finite as cos_below -> 0.
+LAMINA_FN float refraction_jacobian(float cos_above, float cos_below, float eta) {
+  if (cos_above <= 0.0f || cos_below <= 0.0f || eta <= 0.0f) return 0.0f;
+  return cos_above / max(eta * eta * cos_below, LAMINA_MIN_DENOM);
+}
+
+// Bouguer-Lambert-Beer attenuation per channel along the refracted path down and back up
+// (Weidlich and Wilkie course, eqs. 3.2, 3.4 and 3.5; Elek 2010, eq. 3):
+// a = exp(-sigma d (1/cos_l + 1/cos_v)), cos_l and cos_v of the refracted directions.
+// 0 if a cosine is <= 0. A negative optical depth (sigma d < 0) is treated as 0, never as gain.
+LAMINA_FN vec3 absorption(vec3 sigma, float thickness, float cos_l, float cos_v) {
+  if (cos_l <= 0.0f || cos_v <= 0.0f) return vec3(0.0f);
+  float path = thickness * (1.0f / max(cos_l, LAMINA_MIN_DENOM) + 1.0f / max(cos_v, LAMINA_MIN_DENOM));
+  return exp(-max(sigma * path, vec3(0.0f)));
+}
+
+// Elek 2010, eq. 4 (Weidlich and Wilkie course, eq. 3.3): t = (1 - G) + T G, where T is the
+// Fresnel transmittance on the way up and G the geometry term of the interface.
+LAMINA_FN float tir_compensation(float T, float G) { return (1.0f - G) + T * G; }
+
+LAMINA_FN vec3 mirror_across_horizon(vec3 w) { return vec3(w.x, w.y, -w.z); }

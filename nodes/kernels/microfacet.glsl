@@ -1,0 +1,126 @@
+// lamina kernels: microfacet distributions, geometry terms, the Torrance-Sparrow lobe and normal
+// sampling. m is the Beckmann RMS slope (tan of the course's roughness angle); distribution
+// 0 = Beckmann, 1 = normalised Blinn, 2 = GGX (alpha = m). Every D is normalised so that
+// integral D(h) cos_h d omega_h = 1 over the hemisphere (Walter et al. 2007, eq. 4).
+
+// Smooth limit: callers clamp m to at least this; the kernels clamp again so that no argument
+// divides by zero.
+const float LAMINA_MIN_SLOPE = 1.0e-4f;
+
+LAMINA_FN float d_beckmann(float cos_h, float m) {
+  if (cos_h <= 0.0f) return 0.0f;
+  float c2 = min(cos_h * cos_h, 1.0f);
+  float sin2 = 1.0f - c2;
+  float m2 = lamina_sqr(max(m, LAMINA_MIN_SLOPE));
+  // Past tan^2/m^2 = 80 the lobe is below 1e-30 (exp(-80) = 2e-35) for any sensible m, and
+  // stopping there keeps tan^2 = sin^2/cos^2 and 1/cos^4 finite as cos_h -> 0.
+  if (sin2 >= 80.0f * m2 * c2) return 0.0f;
+  float tan2 = sin2 / c2;
+  // Walter et al. 2007, eq. 25 (Elek 2010, App. B, without its 1/pi):
+  // D = exp(-tan^2 / m^2) / (pi m^2 cos^4).
+  return exp(-tan2 / m2) * LAMINA_INV_PI / (m2 * c2 * c2);
+}
+
+// Walter et al. 2007 (Phong distribution: the exponent whose lobe matches a Beckmann slope m):
+// e = 2 / m^2 - 2.
+LAMINA_FN float blinn_exponent(float m) { return max(2.0f / lamina_sqr(max(m, LAMINA_MIN_SLOPE)) - 2.0f, 0.0f); }
+
+LAMINA_FN float d_blinn(float cos_h, float m) {
+  if (cos_h <= 0.0f) return 0.0f;
+  float e = blinn_exponent(m);
+  // Weidlich and Wilkie course, eq. 3.7 (its blinnD; Walter et al. 2007, eq. 30):
+  // D = (e + 2) / (2 pi) cos^e.
+  return (e + 2.0f) * (0.5f * LAMINA_INV_PI) * pow(min(cos_h, 1.0f), e);
+}
+
+LAMINA_FN float d_ggx(float cos_h, float alpha) {
+  if (cos_h <= 0.0f) return 0.0f;
+  float c2 = min(cos_h * cos_h, 1.0f);
+  float a2 = lamina_sqr(max(alpha, LAMINA_MIN_SLOPE));
+  // Walter et al. 2007, eq. 33: D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2), multiplied out as
+  // alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2), which needs no division by cos.
+  float den = a2 * c2 + (1.0f - c2);
+  return a2 * LAMINA_INV_PI / max(den * den, LAMINA_MIN_DENOM);
+}
+
+// Unknown distributions give 0.
+LAMINA_FN float d_microfacet(int distribution, float cos_h, float m) {
+  if (distribution == 0) return d_beckmann(cos_h, m);
+  if (distribution == 1) return d_blinn(cos_h, m);
+  if (distribution == 2) return d_ggx(cos_h, m);
+  return 0.0f;
+}
+
+LAMINA_FN float g_vcavity(float cos_l, float cos_v, float cos_h, float v_dot_h) {
+  if (cos_l <= 0.0f || cos_v <= 0.0f || cos_h <= 0.0f || v_dot_h <= 0.0f) return 0.0f;
+  // Weidlich and Wilkie course, sec. 3.3.1 (geom; Elek 2010, App. B; Cook and Torrance 1982):
+  // G = min(1, 2 cos_h cos_v / v.h, 2 cos_h cos_l / v.h), compared before dividing so that a tiny
+  // v.h cannot overflow.
+  float num = 2.0f * cos_h * min(cos_l, cos_v);
+  return num >= v_dot_h ? 1.0f : num / v_dot_h;
+}
+
+LAMINA_FN float g1_smith_ggx(float cos_w, float alpha) {
+  if (cos_w <= 0.0f) return 0.0f;
+  float c = min(cos_w, 1.0f);
+  // Walter et al. 2007, eq. 34: G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)), multiplied through by cos:
+  // 2 cos / (cos + sqrt(cos^2 + alpha^2 sin^2)); the denominator is > 0 for cos > 0.
+  return 2.0f * c / (c + sqrt(c * c + alpha * alpha * (1.0f - c * c)));
+}
+
+// Walter et al. 2007, eq. 23: the separable Smith approximation G = G1(l) G1(v).
+LAMINA_FN float g_smith_ggx(float cos_l, float cos_v, float alpha) {
+  return g1_smith_ggx(cos_l, alpha) * g1_smith_ggx(cos_v, alpha);
+}
+
+// GGX uses its Smith term, the others the V-cavity term. Both are 0 unless the microfacet faces
+// the view (cos_h > 0 and v.h > 0; the chi+ factor of Walter et al. 2007, eq. 34).
+LAMINA_FN float g_microfacet(int distribution, float cos_l, float cos_v, float cos_h, float v_dot_h, float m) {
+  if (distribution == 2) return (cos_h > 0.0f && v_dot_h > 0.0f) ? g_smith_ggx(cos_l, cos_v, m) : 0.0f;
+  return g_vcavity(cos_l, cos_v, cos_h, v_dot_h);
+}
+
+LAMINA_FN vec3 torrance_sparrow(vec3 F, float D, float G, float cos_l, float cos_v) {
+  if (cos_l <= 0.0f || cos_v <= 0.0f) return vec3(0.0f);
+  // Weidlich and Wilkie course, eq. 2.1 (Walter et al. 2007, eq. 20): f = F D G / (4 cos_l cos_v).
+  return F * (D * G / max(4.0f * cos_l * cos_v, LAMINA_MIN_DENOM));
+}
+
+// Samples a microfacet normal h with density D(h) cos_h per solid angle (plain NDF sampling,
+// as in Walter et al. 2007). u in [0,1)^2; u.x is clamped below 1 so that log(1 - u.x) and
+// 1/(1 - u.x) stay finite. Unknown distributions give vec3(0).
+LAMINA_FN vec3 sample_microfacet_normal(int distribution, float m, vec2 u) {
+  float ux = clamp(u.x, 0.0f, 0.99999988f);
+  float mm = max(m, LAMINA_MIN_SLOPE);
+  float cos2 = 1.0f;
+  float sin2 = 0.0f;
+  if (distribution == 0) {
+    // Walter et al. 2007, eq. 28: tan^2 = -m^2 log(1 - u).
+    float tan2 = -mm * mm * log(1.0f - ux);
+    cos2 = 1.0f / (1.0f + tan2);
+    sin2 = tan2 / (1.0f + tan2);
+  } else if (distribution == 1) {
+    // Walter et al. 2007 (Phong distribution): cos = u^(1 / (e + 2)), the inverse of the CDF
+    // cos^(e + 2) of D cos over the hemisphere; written with 1 - u, uniform as well and never 0.
+    float c = pow(1.0f - ux, 1.0f / (blinn_exponent(mm) + 2.0f));
+    cos2 = c * c;
+    sin2 = 1.0f - cos2;
+  } else if (distribution == 2) {
+    // Walter et al. 2007, eq. 35: tan^2 = alpha^2 u / (1 - u), as cos^2 and sin^2 without a pole.
+    float den = 1.0f - ux + mm * mm * ux;
+    cos2 = (1.0f - ux) / den;
+    sin2 = mm * mm * ux / den;
+  } else {
+    return vec3(0.0f);
+  }
+  // Walter et al. 2007, eq. 36: phi = 2 pi u.y.
+  float phi = 2.0f * LAMINA_PI * u.y;
+  float sin_theta = lamina_safe_sqrt(sin2);
+  return vec3(sin_theta * cos(phi), sin_theta * sin(phi), sqrt(cos2));
+}
+
+// Walter et al. 2007, eq. 24: p(h) = D(h) cos_h.
+LAMINA_FN float pdf_microfacet_normal(int distribution, float m, float cos_h) {
+  if (cos_h <= 0.0f) return 0.0f;
+  return d_microfacet(distribution, cos_h, m) * min(cos_h, 1.0f);
+}

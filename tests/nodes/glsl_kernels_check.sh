@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Every kernel in nodes/kernels/*.glsl compiles as GLSL 330 core, 450 core and ES 3.00.
+# For each target: the prelude the GLSL back end writes, the six files in include order, and a
+# fragment main() that calls every kernel once, validated by glslangValidator.
+# Usage: glsl_kernels_check.sh <project source dir>
+set -euo pipefail
+
+src=${1:?usage: glsl_kernels_check.sh <project source dir>}
+kernels="$src/nodes/kernels"
+validator=$(command -v glslangValidator || true)
+if [[ -z $validator ]]; then
+  echo "glslangValidator not found (Debian: apt-get install glslang-tools)" >&2
+  exit 1
+fi
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+main_body() {
+  cat <<'GLSL'
+
+in vec2 v_uv;
+out vec4 frag_color;
+
+void main() {
+  float c = clamp(v_uv.x, 0.0f, 1.0f);
+  float m = max(v_uv.y, LAMINA_MIN_SLOPE);
+  vec3 w = normalize(vec3(v_uv, 1.0f));
+  vec3 v = normalize(vec3(-v_uv.y, v_uv.x, 0.5f));
+  vec3 s = vec3(0.0f);
+  float f = 0.0f;
+  // common
+  f += lamina_sqr(c) + lamina_luminance(w) + lamina_safe_sqrt(c) + LAMINA_PI + LAMINA_INV_PI;
+  // fresnel
+  f += fresnel_dielectric(c, 1.5f) + fresnel_schlick(c, 0.04f);
+  s += fresnel_conductor(c, vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
+  s += fresnel_lazanyi(c, vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
+  // microfacet
+  f += d_beckmann(c, m) + blinn_exponent(m) + d_blinn(c, m) + d_ggx(c, m) + d_microfacet(2, c, m);
+  f += g_vcavity(c, w.z, v.z, 0.7f) + g1_smith_ggx(c, m) + g_smith_ggx(c, w.z, m);
+  f += g_microfacet(0, c, w.z, v.z, 0.7f, m);
+  s += torrance_sparrow(vec3(f), 1.0f, 0.5f, c, w.z);
+  s += sample_microfacet_normal(1, m, v_uv);
+  f += pdf_microfacet_normal(2, m, c);
+  // diffuse
+  s += lambert(vec3(0.5f)) + oren_nayar(w, v, vec3(0.3f, 0.4f, 0.1f), 0.34f) + sample_cosine(v_uv);
+  f += pdf_cosine(c);
+  // layer
+  s += refract_down(w, 1.5f) + refract_up(v, 1.5f) + mirror_across_horizon(w);
+  f += refraction_jacobian(c, w.z, 1.5f) + tir_compensation(0.96f, 0.8f);
+  s += absorption(vec3(0.6f, 1.0f, 1.0f), 0.5f, c, w.z);
+  // texture
+  f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
+  s += srgb_to_linear(w);
+  frag_color = vec4(s, f);
+}
+GLSL
+}
+
+status=0
+for target in 330 450 es300; do
+  shader="$work/kernels_$target.frag"
+  {
+    case $target in
+      330) echo "#version 330 core" ;;
+      450) echo "#version 450 core" ;;
+      es300) printf '%s\n' "#version 300 es" "precision highp float;" ;;
+    esac
+    echo "#define LAMINA_OUT(T) out T"
+    echo "#define LAMINA_FN"
+    for f in common fresnel microfacet diffuse layer texture; do
+      cat "$kernels/$f.glsl"
+    done
+    main_body
+  } >"$shader"
+  if "$validator" "$shader" >"$work/log" 2>&1; then
+    echo "ok: GLSL $target"
+  else
+    echo "FAILED: GLSL $target" >&2
+    cat "$work/log" >&2
+    status=1
+  fi
+done
+exit $status
