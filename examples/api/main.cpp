@@ -1,23 +1,47 @@
-// Loads a material file with liblamina, prints every problem or each material's class.
-// Usage: lamina_api_example FILE.json
+// Loads a material with liblamina, then evaluates, samples and integrates it on the CPU.
+// Usage: lamina_api_example FILE.json [MATERIAL]
+#include <lamina/graph/compile.h>
+#include <lamina/graph/cpu/evaluator.h>
+#include <lamina/graph/cpu/frame.h>
 #include <lamina/graph/load.h>
 
+#include <cstdio>
 #include <iostream>
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: " << argv[0] << " FILE.json\n";
+  if (argc < 2 || argc > 3) {
+    std::cerr << "usage: " << argv[0] << " FILE.json [MATERIAL]\n";
     return 2;
   }
   try {
-    lamina::CheckedFile checked = lamina::check_file(argv[1]);
-    for (const auto& d : checked.diagnostics.errors()) std::cerr << lamina::format(d) << "\n";
-    for (const auto& d : checked.diagnostics.warnings()) std::cerr << lamina::format(d) << "\n";
-    if (!checked.ok()) return 2;
-    for (size_t i = 0; i < checked.document.materials.size(); ++i) {
-      lamina::Classification c = lamina::classify(*checked.graphs[i]);
-      std::cout << checked.document.materials[i].name << ": " << c.letter << ") " << c.name << "\n";
-    }
+    // 1. Read and check. Every problem comes with the file and a JSON pointer.
+    lamina::Document document = lamina::load(argv[1]);
+    std::string name = argc == 3 ? argv[2] : document.materials.front().name;
+
+    // 2. Compile to a Program and wrap it in the CPU evaluator (immutable, thread-safe).
+    lamina::cpu::Evaluator material(lamina::compile(document, name));
+
+    // 3. At a shading point: build the local frame from the world normal and tangent, and move
+    //    the light and view directions into it (both point away from the surface).
+    lamina::Frame frame = lamina::Frame::from_normal_tangent({0.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f});
+    glm::vec3 wo = frame.to_local(glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f)));
+    glm::vec3 wi = frame.to_local(glm::normalize(glm::vec3(0.3f, 1.0f, -0.8f)));
+    lamina::ShadingContext ctx;
+    ctx.uv = {0.25f, 0.75f};
+
+    glm::vec3 f = material.eval(ctx, wi, wo);  // BRDF, without the cosine
+    float pdf = material.pdf(ctx, wi, wo);
+    lamina::cpu::Sample s = material.sample(ctx, wo, {0.3f, 0.7f}, 0.5f);
+    glm::vec3 albedo = material.albedo(ctx, wo);
+
+    std::printf("%s: %s\n", argv[1], name.c_str());
+    std::printf("  f   = %.6g %.6g %.6g  pdf = %.6g\n", f.x, f.y, f.z, pdf);
+    std::printf("  sample: wi = %.4f %.4f %.4f from %s, pdf = %.6g\n", s.wi.x, s.wi.y, s.wi.z,
+                s.lobe >= 0 ? material.lobe_name(size_t(s.lobe)).c_str() : "-", s.pdf);
+    std::printf("  albedo at 45 deg = %.4f %.4f %.4f\n", albedo.x, albedo.y, albedo.z);
+  } catch (const lamina::Error& e) {
+    for (const auto& d : e.diagnostics()) std::cerr << lamina::format(d) << "\n";
+    return 2;
   } catch (const lamina::IoError& e) {
     std::cerr << e.what() << "\n";
     return 1;

@@ -15,4 +15,12 @@ cmake -S "$source/examples/api" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH
 cmake --build "$work/consumer" >/dev/null
 output=$("$work/consumer/lamina_api_example" "$source/examples/materials/car_paint.json")
 echo "$output"
-[ "$output" = "car_paint: e) metallic paint" ]
+grep -q "^  f   = " <<<"$output"
+grep -q "albedo at 45 deg" <<<"$output"
+# An invalid file is a user mistake: exit 2 with the pointer.
+set +e
+"$work/consumer/lamina_api_example" "$source/tests/data/bad/ior_below_one.json" 2>"$work/err.txt"
+code=$?
+set -e
+[ "$code" = 2 ]
+grep -q "ior_below_one.json:/materials/0/nodes/1/ior:" "$work/err.txt"

@@ -1,0 +1,22 @@
+// The local shading frame: z along the normal, x along the tangent. wi and wo point away from the
+// surface; the evaluators work in this frame, where cos_theta(w) = w.z.
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace lamina {
+
+struct Frame {
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};
+  glm::vec3 bitangent{0.0f, 1.0f, 0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+
+  // Orthonormalises `tangent` against `normal` (Gram-Schmidt); when the tangent is missing or
+  // parallel to the normal, picks one (Duff et al. 2017, "Building an orthonormal basis, revisited").
+  static Frame from_normal_tangent(glm::vec3 normal, glm::vec3 tangent);
+
+  glm::vec3 to_local(glm::vec3 w) const { return {glm::dot(w, tangent), glm::dot(w, bitangent), glm::dot(w, normal)}; }
+  glm::vec3 to_world(glm::vec3 w) const { return w.x * tangent + w.y * bitangent + w.z * normal; }
+};
+
+}  // namespace lamina
