@@ -1,0 +1,1088 @@
+// Physical and statistical properties of the CPU evaluator on every example material (DESIGN.md,
+// Testing): finite and non-negative values, reciprocity, the white furnace, chi-square goodness of
+// fit of sample() against pdf() as pbrt tests its BSDFs, pdf normalisation, consistency of the
+// entry points, an independent double-precision transcription of Elek's Algorithm 1, and the mix.
+// Every random number comes from a fixed-seed std::mt19937_64.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <complex>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cpu_test_support.h"
+#include "test_support.h"
+
+using namespace lamina;
+using glm::dvec3;
+using glm::vec2;
+using glm::vec3;
+
+namespace {
+
+struct Example {
+  std::string name;
+  std::filesystem::path file;
+  cpu::Evaluator evaluator;
+  bool textured;
+};
+
+const std::vector<Example>& examples() {
+  static const std::vector<Example> all = [] {
+    std::vector<Example> list;
+    for (const auto& file : test::example_files()) {
+      cpu::Evaluator e = test::load_evaluator(file);
+      bool textured = !e.program().ops.empty();
+      list.push_back({file.stem().string(), file, std::move(e), textured});
+    }
+    REQUIRE(list.size() >= 17);
+    return list;
+  }();
+  return all;
+}
+
+float to_unit_float(double u) { return std::min(float(u), 0x1.fffffep-1f); }
+
+ShadingContext at_uv(vec2 uv) {
+  ShadingContext ctx;
+  ctx.uv = uv;
+  return ctx;
+}
+
+vec2 random_uv(std::mt19937_64& rng) { return {to_unit_float(test::uniform(rng)), to_unit_float(test::uniform(rng))}; }
+
+bool finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool non_negative(vec3 v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
+float max_component(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+std::string describe(vec3 v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+// A direction in a mix that stresses the evaluator: uniform cosines, cosines log-uniform down to
+// 1e-6, exactly grazing (z = 0), exactly normal, below the horizon (z = -0 included), and near the
+// mirror of `partner` (inside the narrow lobes) when one is given.
+vec3 stress_direction(std::mt19937_64& rng, const vec3* partner) {
+  double kind = test::uniform(rng);
+  double phi = 2.0 * test::kPi * test::uniform(rng);
+  if (kind < 0.30) return test::to_float(test::from_cosine(test::uniform(rng), phi));
+  if (kind < 0.50) return test::to_float(test::from_cosine(std::pow(10.0, -6.0 * test::uniform(rng)), phi));
+  if (kind < 0.55) return vec3(float(std::cos(phi)), float(std::sin(phi)), 0.0f);
+  if (kind < 0.58) return vec3(0.0f, 0.0f, 1.0f);
+  if (kind < 0.60) return vec3(float(std::cos(phi)), float(std::sin(phi)), -0.0f);
+  if (kind < 0.70) return test::to_float(test::from_cosine(-test::uniform(rng), phi));
+  if (partner == nullptr || partner->z <= 0.0f) return test::to_float(test::from_cosine(test::uniform(rng), phi));
+  // Within 1e-5 to 0.3 rad (log-uniform) of the mirror direction.
+  double angle = std::pow(10.0, -5.0 + 4.5 * test::uniform(rng));
+  return test::to_float(test::Frame(test::mirror(test::to_double(*partner))).direction(angle, phi));
+}
+
+// An ordinary direction above the horizon: cosine uniform in [1e-4, 1] (70%) or log-uniform in
+// [1e-4, 1] (30%), or, with a partner, log-uniformly within `max_angle` of its mirror direction.
+dvec3 upper_direction(std::mt19937_64& rng, const dvec3* partner, double mirror_share, double min_angle,
+                      double max_angle) {
+  double kind = test::uniform(rng);
+  double phi = 2.0 * test::kPi * test::uniform(rng);
+  if (partner != nullptr && kind < mirror_share) {
+    double angle = min_angle * std::pow(max_angle / min_angle, test::uniform(rng));
+    dvec3 w = test::Frame(test::mirror(*partner)).direction(angle, phi);
+    if (w.z > 1.0e-4) return w;
+  }
+  double cos_theta = test::uniform(rng) < 0.7 ? 1.0e-4 + (1.0 - 1.0e-4) * test::uniform(rng)
+                                              : std::pow(10.0, -4.0 * test::uniform(rng));
+  return test::from_cosine(cos_theta, phi);
+}
+
+}  // namespace
+
+// --- the statistics helpers themselves ------------------------------------------------------
+
+TEST_CASE("the chi-square p-value matches closed forms of the incomplete gamma function") {
+  // Q(1, x) = e^-x (dof 2); Q(1/2, x) = erfc(sqrt(x)) (dof 1); Q(2, x) = (1 + x) e^-x (dof 4).
+  for (double x : {1.0e-3, 0.1, 0.5, 1.0, 2.0, 5.0, 20.0, 100.0}) {
+    CAPTURE(x);
+    CHECK(test::gamma_q(1.0, x) == doctest::Approx(std::exp(-x)).epsilon(1.0e-12).scale(0.0));
+    CHECK(test::gamma_q(0.5, x) == doctest::Approx(std::erfc(std::sqrt(x))).epsilon(1.0e-10).scale(0.0));
+    CHECK(test::gamma_q(2.0, x) == doctest::Approx((1.0 + x) * std::exp(-x)).epsilon(1.0e-12).scale(0.0));
+  }
+  // Large degrees of freedom, as the binned tests use: the median of chi2(k) is about
+  // k (1 - 2/(9k))^3, and the upper 1% point of chi2(1000) is 1106.969 (standard tables).
+  for (int dof : {100, 1000, 3000}) {
+    double k = double(dof);
+    CHECK(test::chi_square_p_value(k * std::pow(1.0 - 2.0 / (9.0 * k), 3.0), dof) ==
+          doctest::Approx(0.5).epsilon(2e-3).scale(0.0));
+  }
+  CHECK(test::chi_square_p_value(1106.969, 1000) == doctest::Approx(0.01).epsilon(1e-3).scale(0.0));
+  CHECK(test::sidak(0.01, 1) == doctest::Approx(0.01));
+}
+
+// --- 1 and 6: values ---------------------------------------------------------------------------
+
+TEST_CASE("every example gives finite, non-negative f and pdf, exactly 0 below the horizon, and eval_pdf agrees") {
+  const int pairs = 100000 / test::kSanitizerDivisor;
+  for (const Example& example : examples()) {
+    CAPTURE(example.name);
+    std::mt19937_64 rng(0x5eed0001);
+    long bad_value = 0, nonzero_below = 0, eval_pdf_differs = 0, grazing = 0;
+    std::string first_bad, first_below, first_differs;
+    for (int i = 0; i < pairs; ++i) {
+      vec3 wo = stress_direction(rng, nullptr);
+      vec3 wi = stress_direction(rng, &wo);
+      ShadingContext ctx = at_uv(random_uv(rng));
+      vec3 f = example.evaluator.eval(ctx, wi, wo);
+      float pdf = example.evaluator.pdf(ctx, wi, wo);
+      cpu::EvalPdf both = example.evaluator.eval_pdf(ctx, wi, wo);
+      auto where = [&] {
+        return "wi " + describe(wi) + " wo " + describe(wo) + " uv " + describe(vec3(ctx.uv, 0.0f)) + ": f " +
+               describe(f) + " pdf " + std::to_string(pdf) + "; eval_pdf " + describe(both.f) + " " +
+               std::to_string(both.pdf);
+      };
+      if (wi.z <= 0.0f || wo.z <= 0.0f) {
+        if (f != vec3(0.0f) || pdf != 0.0f || both.f != vec3(0.0f) || both.pdf != 0.0f) {
+          if (nonzero_below++ == 0) first_below = where();
+        }
+        continue;
+      }
+      if (std::min(wi.z, wo.z) < 1.0e-3f) ++grazing;
+      if (!finite(f) || !non_negative(f) || !std::isfinite(pdf) || pdf < 0.0f) {
+        if (bad_value++ == 0) first_bad = where();
+      }
+      // The same arithmetic on the same inputs: equal bit for bit.
+      if (both.f != f || both.pdf != pdf) {
+        if (eval_pdf_differs++ == 0) first_differs = where();
+      }
+    }
+    CHECK_MESSAGE(bad_value == 0, first_bad);
+    CHECK_MESSAGE(nonzero_below == 0, first_below);
+    CHECK_MESSAGE(eval_pdf_differs == 0, first_differs);
+    CHECK(grazing > pairs / 10);  // the grazing cases were exercised
+  }
+}
+
+// --- 2: reciprocity ----------------------------------------------------------------------------
+
+TEST_CASE("every example is reciprocal: f(wi, wo) = f(wo, wi)") {
+  const int pairs = 10000 / test::kSanitizerDivisor;
+  std::string summary =
+      "reciprocity, max |f(wi,wo) - f(wo,wi)| / max(|f|, 1e-6 max_c f), " + std::to_string(pairs) + " pairs:\n";
+  for (const Example& example : examples()) {
+    CAPTURE(example.name);
+    std::mt19937_64 rng(0x5eed0002);
+    double worst = 0.0;
+    std::string worst_where;
+    for (int i = 0; i < pairs; ++i) {
+      dvec3 wo_d = upper_direction(rng, nullptr, 0.0, 0.0, 0.0);
+      dvec3 wi_d = upper_direction(rng, &wo_d, 0.3, 1.0e-5, 0.3);
+      vec3 wo = test::to_float(wo_d), wi = test::to_float(wi_d);
+      ShadingContext ctx = at_uv(random_uv(rng));
+      vec3 a = example.evaluator.eval(ctx, wi, wo), b = example.evaluator.eval(ctx, wo, wi);
+      double floor = 1.0e-6 * double(std::max(max_component(a), max_component(b)));
+      for (int c = 0; c < 3; ++c) {
+        double scale = std::max(double(std::max(a[c], b[c])), floor);
+        if (scale <= 0.0) continue;
+        double error = std::abs(double(a[c]) - double(b[c])) / scale;
+        if (error > worst) {
+          worst = error;
+          worst_where = "wi " + describe(wi) + " wo " + describe(wo) + ": " + describe(a) + " vs " + describe(b);
+        }
+      }
+    }
+    CHECK_MESSAGE(worst <= 1.0e-5, worst_where);
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-22s %.3g\n", example.name.c_str(), worst);
+    summary += line;
+  }
+  MESSAGE(summary);
+}
+
+// --- 3: white furnace --------------------------------------------------------------------------
+
+namespace {
+
+// The uvs at which textured examples are probed: the 8 checker squares along u, and 8 random
+// points (2 and 2 under the sanitisers).
+std::vector<vec2> probe_uvs(const Example& example) {
+  if (!example.textured) return {vec2(0.5f)};
+  const int count = test::kSanitized ? 2 : 8;
+  std::vector<vec2> uvs;
+  for (int i = 0; i < count; ++i) uvs.push_back(vec2((float(i) + 0.5f) / 8.0f, 0.5f / 8.0f));
+  std::mt19937_64 rng(0x5eed0003);
+  for (int i = 0; i < count; ++i) uvs.push_back(random_uv(rng));
+  return uvs;
+}
+
+// The model of Weidlich and Wilkie is only approximately energy conserving (README, "Energy"),
+// and these examples exceed 1 in the white furnace. Two causes, both properties of the model as
+// Elek's Algorithm 1 defines it, not of the implementation:
+//  - a glossy lobe below an interface of index n is evaluated at refracted directions, which
+//    squeezes the outer hemisphere into the refracted cone; its albedo seen from outside grows by
+//    up to n^2 (silver under n = 1.7: 0.97 * 0.93 * 2.89 = 2.6 for a lobe entirely inside the
+//    cone), largest at normal incidence;
+//  - T = 1 - F(V.H) rather than 1 - F(theta_o), so at grazing incidence the layers below receive
+//    far more than the Fresnel transmittance of the macro surface: the excess at 89 deg.
+// Each bound is the largest albedo measured over theta_o in 0..89 deg (and the probed uvs), plus
+// 3%, so a change in the model that adds energy fails here. Where it peaks is given beside it.
+const std::map<std::string, double>& documented_excess() {
+  static const std::map<std::string, double> bounds = {
+      {"brass", 1.767 * 1.03},                // 0 deg, R: brass under IOR 1.5
+      {"car_paint", 1.076 * 1.03},            // 89 deg, B
+      {"ceramic_glaze", 1.801 * 1.03},        // 89 deg, B
+      {"checker_tiles", 2.041 * 1.03},        // 0 deg, R, on a gold square
+      {"christmas_orb", 1.846 * 1.03},        // 0 deg, R
+      {"concrete_ball", 1.138 * 1.03},        // 89 deg, B
+      {"gold_metallic_paint", 1.978 * 1.03},  // 0 deg, R
+      {"gold_paint", 1.570 * 1.03},           // 0 deg, R
+      {"house_paint", 1.199 * 1.03},          // 89 deg, B
+      {"patina_map_copper", 1.950 * 1.03},    // 0 deg, R, where the patina is thin
+      {"red_lacquer", 1.689 * 1.03},          // 89 deg, R
+      {"silver_paint", 2.399 * 1.03},         // 0 deg, R: silver under IOR 1.7
+      {"sugar", 1.188 * 1.03},                // 89 deg, R
+  };
+  return bounds;
+}
+
+}  // namespace
+
+TEST_CASE("every example's white furnace albedo is non-negative and within its documented bound") {
+  // Evaluator::albedo with its default 1024 Hammersley points per lobe; the tolerance of examples
+  // without a documented excess is for that quadrature only (about 1% near grazing, see the next
+  // test), not for the model.
+  const double tolerance = 0.02;
+  std::vector<double> angles;
+  for (int a = 0; a <= 85; a += 5) angles.push_back(double(a));
+  angles.push_back(89.0);
+  std::string report = "white furnace: directional albedo (R, G, B) at theta_o (deg), Evaluator::albedo\n";
+  for (const Example& example : examples()) {
+    CAPTURE(example.name);
+    std::vector<vec2> uvs = probe_uvs(example);
+    report += example.name +
+              (example.textured ? " (largest over " + std::to_string(uvs.size()) + " uv per channel)" : "") + "\n";
+    long bad = 0;
+    double largest = 0.0;
+    std::string where;
+    for (double theta : angles) {
+      vec3 wo = test::to_float(test::spherical(test::radians(theta), 0.0));
+      vec3 most(0.0f);
+      for (vec2 uv : uvs) {
+        vec3 albedo = example.evaluator.albedo(at_uv(uv), wo);
+        if (!finite(albedo) || !non_negative(albedo)) ++bad;
+        for (int c = 0; c < 3; ++c)
+          if (double(albedo[c]) > largest) {
+            largest = double(albedo[c]);
+            char text[160];
+            std::snprintf(text, sizeof text, "theta_o %.0f deg, channel %c, uv (%.3f, %.3f)", theta, "RGB"[c],
+                          double(uv.x), double(uv.y));
+            where = text;
+          }
+        most = glm::max(most, albedo);
+      }
+      char line[200];
+      std::snprintf(line, sizeof line, "  %5.1f  %.4f %.4f %.4f\n", theta, double(most.x), double(most.y),
+                    double(most.z));
+      report += line;
+    }
+    CHECK(bad == 0);
+    auto documented = documented_excess().find(example.name);
+    double bound = documented == documented_excess().end() ? 1.0 + tolerance : documented->second;
+    CHECK_MESSAGE(largest <= bound, "largest albedo " << largest << " at " << where);
+    if (documented != documented_excess().end())
+      CHECK_MESSAGE(largest > 1.0 + tolerance, "no longer exceeds 1: drop it from documented_excess()");
+    report += "  largest " + std::to_string(largest) + " at " + where + "\n";
+  }
+  for (const auto& [name, bound] : documented_excess()) {
+    bool known = false;
+    for (const Example& example : examples()) known = known || example.name == name;
+    CHECK_MESSAGE(known, name << " in documented_excess() is not an example");
+  }
+  MESSAGE(report);
+}
+
+TEST_CASE("Evaluator::albedo agrees with an adaptive quadrature of f cos") {
+  // Independent of the evaluator's sampling: the adaptive quadrature of the chi-square test on
+  // 20 x 40 cells of the hemisphere, per channel, refined around the mirror direction. With its
+  // default 1024 points per lobe Evaluator::albedo is within about 1% (blue_metallic at 85 deg:
+  // 1.2% low in blue, converging to the quadrature's value with more points).
+  const std::vector<double> angles =
+      test::kSanitized ? std::vector<double>{85.0} : std::vector<double>{0.0, 60.0, 85.0};
+  std::vector<std::vector<double>> differences(examples().size());
+  test::parallel_for(examples().size(), [&](size_t index) {
+    const Example& example = examples()[index];
+    ShadingContext ctx = at_uv(probe_uvs(example).front());
+    for (double theta : angles) {
+      vec3 wo = glm::normalize(test::to_float(test::spherical(test::radians(theta), 0.0)));
+      vec3 fast = example.evaluator.albedo(ctx, wo);
+      double difference = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        auto density = [&](const dvec3& w) -> double {
+          if (w.z <= 0.0) return 0.0;
+          return double(example.evaluator.eval(ctx, test::to_float(w), wo)[c]) * w.z;
+        };
+        test::SphericalQuadrature q(density, test::Frame(), {test::mirror(test::to_double(wo))}, 1.0e5);
+        double albedo = 0.0;
+        for (int i = 0; i < 20; ++i)
+          for (int j = 0; j < 40; ++j)
+            albedo += q.integrate(0.5 * test::kPi * i / 20, 0.5 * test::kPi * (i + 1) / 20, 2.0 * test::kPi * j / 40,
+                                  2.0 * test::kPi * (j + 1) / 40);
+        difference = std::max(difference, std::abs(double(fast[c]) - albedo) / std::max(albedo, 1.0e-3));
+      }
+      differences[index].push_back(difference);
+    }
+  });
+  std::string report = "albedo, Evaluator::albedo vs quadrature of f cos, largest relative difference over RGB:\n";
+  for (size_t index = 0; index < examples().size(); ++index) {
+    CAPTURE(examples()[index].name);
+    report += "  " + examples()[index].name + ":";
+    for (size_t a = 0; a < angles.size(); ++a) {
+      CAPTURE(angles[a]);
+      CHECK(differences[index][a] <= 0.02);
+      char text[60];
+      std::snprintf(text, sizeof text, " %.0f deg %.2g", angles[a], differences[index][a]);
+      report += text;
+    }
+    report += "\n";
+  }
+  MESSAGE(report);
+}
+
+// --- 4 and 5: sampling -------------------------------------------------------------------------
+
+namespace {
+
+constexpr int kThetaBins = 40;  // uniform in theta over [0, pi/2]
+constexpr int kPhiBins = 80;    // uniform in phi over [0, 2 pi)
+constexpr int kZoomRadial = 16;
+constexpr int kZoomAzimuthal = 32;
+
+struct SamplingCase {
+  const Example* example;
+  double theta_deg, phi_deg;
+  vec2 uv;
+  long samples;
+};
+
+struct SamplingResult {
+  test::ChiSquareResult global;
+  bool zoomed = false;
+  double zoom_radius_deg = 0.0;
+  test::ChiSquareResult zoom;
+  double integral_grid = 0.0;         // adaptive quadrature over the chi-square bins
+  double integral_halfvector = -1.0;  // adaptive quadrature over half vectors (negative: not run)
+  long samples = 0, failed = 0;
+  long evaluations = 0;
+  double seconds = 0.0;
+};
+
+bool is_microfacet_lobe(const std::string& name) {
+  return name.rfind("interface", 0) == 0 || name.find("conductor") != std::string::npos;
+}
+
+// The uvs at which an example is sampled: for a textured one, from a 32 x 32 grid, the uv where the
+// smallest lobe weight is largest (both sides of a mix drawn), then the uv whose lobe weights differ
+// most from those (the other checker colour; bare copper or full patina).
+std::vector<vec2> sampling_uvs(const Example& example) {
+  if (!example.textured) return {vec2(0.5f)};
+  std::vector<std::pair<vec2, std::vector<float>>> grid;
+  for (int i = 0; i < 32; ++i)
+    for (int j = 0; j < 32; ++j) {
+      vec2 uv((float(i) + 0.5f) / 32.0f, (float(j) + 0.5f) / 32.0f);
+      grid.push_back({uv, example.evaluator.lobe_weights(at_uv(uv), vec3(0.0f, 0.0f, 1.0f))});
+    }
+  auto smallest = [](const auto& entry) { return *std::min_element(entry.second.begin(), entry.second.end()); };
+  auto first = std::max_element(grid.begin(), grid.end(),
+                                [&](const auto& a, const auto& b) { return smallest(a) < smallest(b); });
+  auto distance = [&](const auto& entry) {
+    float sum = 0.0f;
+    for (size_t k = 0; k < entry.second.size(); ++k) sum += std::abs(entry.second[k] - first->second[k]);
+    return sum;
+  };
+  auto second = std::max_element(grid.begin(), grid.end(),
+                                 [&](const auto& a, const auto& b) { return distance(a) < distance(b); });
+  return {first->first, second->first};
+}
+
+// The hemisphere integral of pdf in the coordinates of the microfacet lobes: substituting
+// wi = reflect(wo, h), d omega_i = 4 (wo.h) d omega_h (Walter et al. 2007, eq. 14), over h above
+// the horizon with wo.h > 0 and wi above the horizon (which covers the upper hemisphere of wi once),
+// by the adaptive quadrature on cells of h (20 rows in theta_h). Seeds: the normal (the mirror direction, where
+// every microfacet lobe peaks) and the half vector of the zenith (where directions that cannot
+// leave the stack are spread around).
+double halfvector_integral(const cpu::Evaluator& e, const ShadingContext& ctx, vec3 wo_f, double sample_count,
+                           long& evaluations) {
+  const dvec3 wo = test::to_double(wo_f);
+  auto density = [&](const dvec3& h) -> double {
+    double wo_h = glm::dot(wo, h);
+    if (wo_h <= 0.0) return 0.0;
+    dvec3 wi = 2.0 * wo_h * h - wo;
+    if (wi.z <= 0.0) return 0.0;
+    return double(e.pdf(ctx, test::to_float(wi), wo_f)) * 4.0 * wo_h;
+  };
+  test::SphericalQuadrature q(density, test::Frame(), {dvec3(0.0, 0.0, 1.0), glm::normalize(wo + dvec3(0.0, 0.0, 1.0))},
+                              sample_count);
+  double sum = 0.0;
+  const int rows = 20;
+  for (int i = 0; i < rows; ++i) {
+    // Fewer cells around the pole, where the lobes peak: each cell there refines on its own.
+    const int columns = std::min(4 * (i + 1), 40);
+    for (int j = 0; j < columns; ++j)
+      sum += q.integrate(0.5 * test::kPi * i / rows, 0.5 * test::kPi * (i + 1) / rows, 2.0 * test::kPi * j / columns,
+                         2.0 * test::kPi * (j + 1) / columns);
+  }
+  evaluations += q.evaluations();
+  return sum;
+}
+
+SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
+  auto start = std::chrono::steady_clock::now();
+  const cpu::Evaluator& e = c.example->evaluator;
+  const ShadingContext ctx = at_uv(c.uv);
+  const vec3 wo_f =
+      glm::normalize(test::to_float(test::spherical(test::radians(c.theta_deg), test::radians(c.phi_deg))));
+  const dvec3 wo = test::to_double(wo_f);
+  const dvec3 peak = test::mirror(wo);
+  const long n = c.samples;
+  const double n_d = double(n);
+  SamplingResult r;
+  r.samples = n;
+
+  // Draw.
+  std::mt19937_64 rng(seed);
+  std::vector<dvec3> directions;
+  std::vector<int> lobes;
+  directions.reserve(size_t(n));
+  lobes.reserve(size_t(n));
+  for (long i = 0; i < n; ++i) {
+    vec2 u(to_unit_float(test::uniform(rng)), to_unit_float(test::uniform(rng)));
+    cpu::Sample s = e.sample(ctx, wo_f, u, to_unit_float(test::uniform(rng)));
+    if (!(s.pdf > 0.0f)) {
+      ++r.failed;
+      continue;
+    }
+    directions.push_back(glm::normalize(test::to_double(s.wi)));
+    lobes.push_back(s.lobe);
+  }
+
+  // Global grid: observed counts and expected counts by adaptive quadrature of pdf.
+  auto density = [&](const dvec3& w) -> double {
+    if (w.z <= 0.0) return 0.0;
+    return double(e.pdf(ctx, test::to_float(w), wo_f));
+  };
+  const test::Frame up;
+  std::vector<double> observed(kThetaBins * kPhiBins, 0.0), expected(kThetaBins * kPhiBins, 0.0);
+  const double dtheta = 0.5 * test::kPi / kThetaBins, dphi = 2.0 * test::kPi / kPhiBins;
+  for (const dvec3& w : directions) {
+    auto [theta, phi] = up.angles(w);
+    int i = std::min(int(theta / dtheta), kThetaBins - 1), j = std::min(int(phi / dphi), kPhiBins - 1);
+    observed[size_t(i * kPhiBins + j)] += 1.0;
+  }
+  test::SphericalQuadrature grid(density, up, {peak}, n_d);
+  for (int i = 0; i < kThetaBins; ++i)
+    for (int j = 0; j < kPhiBins; ++j) {
+      double p = grid.integrate(dtheta * i, dtheta * (i + 1), dphi * j, dphi * (j + 1));
+      expected[size_t(i * kPhiBins + j)] = n_d * p;
+      r.integral_grid += p;
+    }
+  r.evaluations += grid.evaluations();
+  auto global_name = [&](size_t index) {
+    int i = int(index) / kPhiBins, j = int(index) % kPhiBins;
+    char name[120];
+    std::snprintf(name, sizeof name, "theta [%.2f, %.2f) phi [%.1f, %.1f) deg", test::degrees(dtheta * i),
+                  test::degrees(dtheta * (i + 1)), test::degrees(dphi * j), test::degrees(dphi * (j + 1)));
+    return std::string(name);
+  };
+  r.global = test::chi_square(observed, expected, n_d, global_name);
+
+  // Narrow lobes fit in a few global bins (2.25 deg in theta), which then test little more than
+  // their total weight. Zoom in: a polar grid around the mirror direction, of three times the
+  // radius holding 90% of the narrowest microfacet lobe's samples (lobes of at least 1% of the
+  // samples), when that radius is under 5 degrees, plus one bin for everything outside it.
+  std::map<int, std::vector<double>> lobe_angles;
+  for (size_t i = 0; i < directions.size(); ++i)
+    if (is_microfacet_lobe(e.lobe_name(size_t(lobes[i]))))
+      lobe_angles[lobes[i]].push_back(test::angle_between(directions[i], peak));
+  double narrowest = 1.0e30;
+  for (auto& [lobe, angles] : lobe_angles) {
+    if (double(angles.size()) < 0.01 * n_d) continue;
+    auto q90 = angles.begin() + long(0.9 * double(angles.size()));
+    std::nth_element(angles.begin(), q90, angles.end());
+    narrowest = std::min(narrowest, *q90);
+  }
+  if (narrowest < test::radians(5.0)) {
+    r.zoomed = true;
+    const double radius = 3.0 * narrowest;
+    r.zoom_radius_deg = test::degrees(radius);
+    const test::Frame around(peak);
+    // Ring i holds min(4 (i + 1), kZoomAzimuthal) azimuthal bins, so inner bins are not tiny.
+    const double dalpha = radius / kZoomRadial;
+    std::vector<int> ring_start(kZoomRadial + 1, 0);
+    auto azimuths = [](int ring) { return std::min(4 * (ring + 1), kZoomAzimuthal); };
+    for (int i = 0; i < kZoomRadial; ++i) ring_start[size_t(i + 1)] = ring_start[size_t(i)] + azimuths(i);
+    const size_t outside = size_t(ring_start[kZoomRadial]);
+    std::vector<double> zo(outside + 1, 0.0), ze(outside + 1, 0.0);
+    for (const dvec3& w : directions) {
+      auto [alpha, beta] = around.angles(w);
+      if (alpha >= radius) {
+        zo[outside] += 1.0;
+        continue;
+      }
+      int i = std::min(int(alpha / dalpha), kZoomRadial - 1);
+      int j = std::min(int(beta / (2.0 * test::kPi) * azimuths(i)), azimuths(i) - 1);
+      zo[size_t(ring_start[size_t(i)] + j)] += 1.0;
+    }
+    test::SphericalQuadrature cap(density, around, {peak}, n_d);
+    double inside = 0.0;
+    for (int i = 0; i < kZoomRadial; ++i)
+      for (int j = 0; j < azimuths(i); ++j) {
+        double dbeta = 2.0 * test::kPi / azimuths(i);
+        double p = cap.integrate(dalpha * i, dalpha * (i + 1), dbeta * j, dbeta * (j + 1));
+        ze[size_t(ring_start[size_t(i)] + j)] = n_d * p;
+        inside += p;
+      }
+    ze[outside] = n_d * std::max(r.integral_grid - inside, 0.0);
+    r.evaluations += cap.evaluations();
+    auto zoom_name = [&](size_t index) {
+      if (index == outside) return std::string("outside the zoom");
+      int i = 0;
+      while (size_t(ring_start[size_t(i + 1)]) <= index) ++i;
+      int j = int(index) - ring_start[size_t(i)];
+      double dbeta = 360.0 / azimuths(i);
+      char name[120];
+      std::snprintf(name, sizeof name, "from mirror [%.4f, %.4f) deg, azimuth [%.1f, %.1f) deg",
+                    test::degrees(dalpha * i), test::degrees(dalpha * (i + 1)), dbeta * j, dbeta * (j + 1));
+      return std::string(name);
+    };
+    r.zoom = test::chi_square(zo, ze, n_d, zoom_name);
+  }
+
+  // pdf is isotropic: the second integral only at phi = 0 (and not under the sanitisers).
+  if (c.phi_deg == 0.0 && !test::kSanitized)
+    r.integral_halfvector = halfvector_integral(e, ctx, wo_f, n_d, r.evaluations);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+struct SamplingRun {
+  std::vector<SamplingCase> cases;
+  std::vector<SamplingResult> results;
+  double seconds = 0.0;
+};
+
+// Shared by the chi-square and the normalisation tests, computed once.
+const SamplingRun& sampling_run() {
+  static const SamplingRun run = [] {
+    SamplingRun r;
+    const long n = 1000000 / test::kSanitizerDivisor;
+    for (const Example& example : examples()) {
+      std::vector<vec2> uvs = sampling_uvs(example);
+      // 10^6 samples at phi = 0; the model is isotropic, so a second azimuth only checks that
+      // sampling handles one, with fewer samples to keep the run short. A textured example's
+      // second uv at two angles.
+      for (double theta : {0.0, 30.0, 60.0, 85.0}) r.cases.push_back({&example, theta, 0.0, uvs[0], n});
+      r.cases.push_back({&example, 60.0, 131.0, uvs[0], n / 4});
+      for (size_t k = 1; k < uvs.size(); ++k)
+        for (double theta : {30.0, 85.0}) r.cases.push_back({&example, theta, 0.0, uvs[k], n});
+    }
+    r.results.resize(r.cases.size());
+    auto start = std::chrono::steady_clock::now();
+    test::parallel_for(r.cases.size(), [&](size_t i) { r.results[i] = run_sampling_case(r.cases[i], 0x5eed1000 + i); });
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  }();
+  return run;
+}
+
+std::string case_name(const SamplingCase& c) {
+  char name[200];
+  std::snprintf(name, sizeof name, "%s, wo theta %.0f phi %.0f deg, uv (%.4f, %.4f)", c.example->name.c_str(),
+                c.theta_deg, c.phi_deg, double(c.uv.x), double(c.uv.y));
+  return name;
+}
+
+}  // namespace
+
+// One test case, so that a ctest run (one process per test case) draws the samples once.
+TEST_CASE("every example samples its pdf, and its pdf integrates to 1") {
+  SUBCASE("sample() follows pdf() (chi-square goodness of fit)") {
+    const SamplingRun& run = sampling_run();
+    int tests = 0;
+    for (const SamplingResult& r : run.results) tests += 1 + (r.zoomed ? 1 : 0);
+    const double significance = test::sidak(0.01, tests);
+    std::map<std::string, std::string> worst;  // per example: the smallest p-value and where
+    std::map<std::string, double> worst_p;
+    for (size_t i = 0; i < run.cases.size(); ++i) {
+      const SamplingCase& c = run.cases[i];
+      const SamplingResult& r = run.results[i];
+      std::string name = case_name(c);
+      CAPTURE(name);
+      CHECK_MESSAGE(r.global.p_value >= significance, "global grid chi2 " << r.global.statistic << " dof "
+                                                                          << r.global.dof << " p " << r.global.p_value
+                                                                          << "\nworst bins:\n"
+                                                                          << r.global.worst_bins);
+      if (r.zoomed)
+        CHECK_MESSAGE(r.zoom.p_value >= significance, "zoom (radius " << r.zoom_radius_deg << " deg) chi2 "
+                                                                      << r.zoom.statistic << " dof " << r.zoom.dof
+                                                                      << " p " << r.zoom.p_value << "\nworst bins:\n"
+                                                                      << r.zoom.worst_bins);
+      // A valid sampler draws a direction for (almost) every u.
+      CHECK(double(r.failed) <= 1.0e-4 * double(r.samples));
+      const std::string& ex = c.example->name;
+      for (auto [p, label] : {std::pair{r.global.p_value, "grid"}, std::pair{r.zoom.p_value, "zoom"}}) {
+        if (std::string(label) == "zoom" && !r.zoomed) continue;
+        if (!worst_p.count(ex) || p < worst_p[ex]) {
+          worst_p[ex] = p;
+          char text[200];
+          std::snprintf(text, sizeof text, "%.3g (%s, theta %.0f phi %.0f)", p, label, c.theta_deg, c.phi_deg);
+          worst[ex] = text;
+        }
+      }
+    }
+    std::string summary = "chi-square: " + std::to_string(tests) + " tests, Sidak per-test significance " +
+                          std::to_string(significance) + ", sampling run " + std::to_string(run.seconds) +
+                          " s; per example the smallest p-value:\n";
+    for (const auto& [ex, text] : worst) summary += "  " + ex + ": " + text + "\n";
+    summary += "zoomed cases (radius deg):";
+    for (size_t i = 0; i < run.cases.size(); ++i)
+      if (run.results[i].zoomed) {
+        char text[120];
+        std::snprintf(text, sizeof text, " %s/%.0f/%.0f:%.3g", run.cases[i].example->name.c_str(),
+                      run.cases[i].theta_deg, run.cases[i].phi_deg, run.results[i].zoom_radius_deg);
+        summary += text;
+      }
+    MESSAGE(summary);
+  }
+  SUBCASE("pdf() integrates to 1 over the hemisphere") {
+    // Two quadratures: the adaptive one of the chi-square bins (theta x phi of wi, refined where pdf
+    // varies and around the mirror direction), and the same adaptive quadrature over half vectors
+    // (halfvector_integral), at phi = 0.
+    const SamplingRun& run = sampling_run();
+    std::map<std::string, std::pair<double, double>> range_grid, range_half;
+    for (size_t i = 0; i < run.cases.size(); ++i) {
+      const SamplingCase& c = run.cases[i];
+      const SamplingResult& r = run.results[i];
+      std::string name = case_name(c);
+      CAPTURE(name);
+      CHECK(std::abs(r.integral_grid - 1.0) <= 0.01);
+      if (r.integral_halfvector >= 0.0) CHECK(std::abs(r.integral_halfvector - 1.0) <= 0.01);
+      auto widen = [](std::map<std::string, std::pair<double, double>>& m, const std::string& k, double v) {
+        auto it = m.find(k);
+        if (it == m.end()) {
+          m[k] = {v, v};
+        } else {
+          it->second.first = std::min(it->second.first, v);
+          it->second.second = std::max(it->second.second, v);
+        }
+      };
+      widen(range_grid, c.example->name, r.integral_grid);
+      if (r.integral_halfvector >= 0.0) widen(range_half, c.example->name, r.integral_halfvector);
+    }
+    std::string summary =
+        "integral of pdf over the hemisphere, min..max over wo: grid quadrature | half-vector quadrature\n";
+    for (const auto& [ex, g] : range_grid) {
+      char line[200];
+      std::snprintf(line, sizeof line, "  %-22s %.5f..%.5f | %.5f..%.5f\n", ex.c_str(), g.first, g.second,
+                    range_half[ex].first, range_half[ex].second);
+      summary += line;
+    }
+    MESSAGE(summary);
+  }
+}
+
+// --- 7: sample() agrees with eval() and pdf() ----------------------------------------------------
+
+TEST_CASE("sample() returns eval() and pdf() of the direction it drew") {
+  const int count = 10000 / test::kSanitizerDivisor;
+  for (const Example& example : examples()) {
+    CAPTURE(example.name);
+    std::mt19937_64 rng(0x5eed0007);
+    long failed = 0, f_differs = 0, pdf_differs = 0, bad_direction = 0;
+    std::string first;
+    for (int i = 0; i < count; ++i) {
+      vec3 wo = test::to_float(upper_direction(rng, nullptr, 0.0, 0.0, 0.0));
+      ShadingContext ctx = at_uv(random_uv(rng));
+      vec2 u(to_unit_float(test::uniform(rng)), to_unit_float(test::uniform(rng)));
+      cpu::Sample s = example.evaluator.sample(ctx, wo, u, to_unit_float(test::uniform(rng)));
+      if (!(s.pdf > 0.0f)) {
+        ++failed;
+        continue;
+      }
+      if (!(s.wi.z > 0.0f) || std::abs(glm::length(s.wi) - 1.0f) > 1.0e-6f || s.lobe < 0 ||
+          size_t(s.lobe) >= example.evaluator.lobe_count())
+        ++bad_direction;
+      vec3 f = example.evaluator.eval(ctx, s.wi, wo);
+      float pdf = example.evaluator.pdf(ctx, s.wi, wo);
+      if (glm::any(glm::greaterThan(glm::abs(f - s.f), 1.0e-7f * glm::abs(f)))) {
+        if (f_differs++ == 0) first = "f " + describe(s.f) + " vs eval " + describe(f);
+      }
+      if (std::abs(pdf - s.pdf) > 1.0e-7f * pdf) {
+        if (pdf_differs++ == 0) first += " pdf " + std::to_string(s.pdf) + " vs " + std::to_string(pdf);
+      }
+    }
+    CHECK_MESSAGE(f_differs == 0, first);
+    CHECK_MESSAGE(pdf_differs == 0, first);
+    CHECK(bad_direction == 0);
+    CHECK(double(failed) <= 1.0e-3 * double(count));
+  }
+}
+
+// --- 8: an independent transcription of Elek's Algorithm 1 ---------------------------------------
+
+namespace {
+
+// The stack of an example, read from its JSON file directly (not through the library).
+struct Coat {
+  double ior = 1.0;  // absolute index below the interface
+  double m = 0.0;    // Beckmann slope, tan(roughness_deg)
+  dvec3 sigma{0.0};  // absorption per unit length
+  double d = 0.0;    // thickness
+};
+struct Base {
+  std::string kind;  // lambert, oren_nayar, conductor
+  dvec3 albedo{0.0};
+  double sigma = 0.0;
+  dvec3 n{1.0}, k{0.0};
+  double m = 0.0;
+};
+struct Stack {
+  std::vector<Coat> coats;  // top first
+  Base base;
+};
+
+dvec3 read_color(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+Stack read_stack(const std::filesystem::path& file) {
+  nlohmann::json doc = nlohmann::json::parse(test::read_file(file));
+  const nlohmann::json& material = doc.at("materials").at(0);
+  std::map<std::string, nlohmann::json> nodes;
+  for (const auto& node : material.at("nodes")) nodes[node.at("id").get<std::string>()] = node;
+  auto deref = [&](const nlohmann::json& link) -> const nlohmann::json& {
+    std::string s = link.get<std::string>();
+    REQUIRE(s.size() > 1);
+    REQUIRE(s[0] == '@');
+    REQUIRE(s.find('.') == std::string::npos);
+    return nodes.at(s.substr(1));
+  };
+  auto beckmann_slope = [](const nlohmann::json& node) {
+    REQUIRE((!node.contains("distribution") || node.at("distribution") == "beckmann"));
+    return std::tan(test::radians(node.at("roughness_deg").get<double>()));
+  };
+  Stack stack;
+  const nlohmann::json* node = &deref(material.at("surface"));
+  while (node->at("type") == "layer") {
+    const nlohmann::json& interface = deref(node->at("interface"));
+    REQUIRE(interface.at("type") == "interface/dielectric");
+    Coat coat;
+    coat.ior = interface.at("ior").get<double>();
+    coat.m = beckmann_slope(interface);
+    if (node->contains("medium")) {
+      const nlohmann::json& medium = deref(node->at("medium"));
+      if (medium.at("type") == "medium/absorbing") {
+        coat.d = medium.at("thickness").get<double>();
+        coat.sigma = read_color(medium.at("absorption"));
+      } else {
+        REQUIRE(medium.at("type") == "medium/clear");
+      }
+    }
+    stack.coats.push_back(coat);
+    node = &deref(node->at("base"));
+  }
+  const std::string type = node->at("type").get<std::string>();
+  if (type == "substrate/lambert") {
+    stack.base.kind = "lambert";
+    stack.base.albedo = read_color(node->at("albedo"));
+  } else if (type == "substrate/oren_nayar") {
+    stack.base.kind = "oren_nayar";
+    stack.base.albedo = read_color(node->at("albedo"));
+    stack.base.sigma = node->at("sigma").get<double>();
+  } else {
+    REQUIRE(type == "substrate/conductor");
+    stack.base.kind = "conductor";
+    stack.base.m = beckmann_slope(*node);
+    if (node->contains("metal")) {
+      // The course's metal constants (SEEDS.md sec. 1, from the 'Type d) - Metal Foil' slide).
+      const std::map<std::string, std::pair<dvec3, dvec3>> metals = {
+          {"gold", {{0.1, 0.42, 1.56}, {3.8, 2.5, 1.9}}},
+          {"silver", {{0.14, 0.13, 0.157}, {4.44, 3.25, 2.40}}},
+          {"aluminium", {{1.94, 1.0, 0.6}, {8.21, 6.69, 4.86}}}};
+      auto it = metals.find(node->at("metal").get<std::string>());
+      REQUIRE(it != metals.end());
+      stack.base.n = it->second.first;
+      stack.base.k = it->second.second;
+    } else {
+      stack.base.n = read_color(node->at("n"));
+      stack.base.k = read_color(node->at("k"));
+    }
+  }
+  return stack;
+}
+
+// Unpolarised Fresnel reflectance of a boundary to the complex relative index eta (Born and Wolf,
+// sec. 1.5.2 with a complex index, sec. 14.2): cos_t from Snell's law in complex arithmetic, then
+// the mean of |r_s|^2 and |r_p|^2. Real eta below 1 past the critical angle gives |r| = 1.
+double fresnel(double cos_i, std::complex<double> eta) {
+  using C = std::complex<double>;
+  double sin2_i = 1.0 - cos_i * cos_i;
+  C cos_t = std::sqrt(C(1.0) - sin2_i / (eta * eta));
+  C r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  C r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  return 0.5 * (std::norm(r_s) + std::norm(r_p));
+}
+
+// Beckmann, normalised (D cos_h integrates to 1): exp(-tan^2/m^2) / (pi m^2 cos^4).
+double beckmann(double cos_h, double m) {
+  if (cos_h <= 0.0) return 0.0;
+  double c2 = cos_h * cos_h;
+  return std::exp(-(1.0 - c2) / c2 / (m * m)) / (test::kPi * m * m * c2 * c2);
+}
+
+// GLSL refract(I, N, eta) (GLSL spec, sec. 8.5).
+dvec3 refract(const dvec3& i, const dvec3& n, double eta) {
+  double k = 1.0 - eta * eta * (1.0 - glm::dot(n, i) * glm::dot(n, i));
+  if (k < 0.0) return dvec3(0.0);
+  return eta * i - (eta * glm::dot(n, i) + std::sqrt(k)) * n;
+}
+
+// The value plus an estimate of the error float evaluation cannot avoid: a Beckmann lobe depends on
+// cos_h through exp(-tan^2/m^2) / cos^4, so a rounding error e in cos_h changes it by a factor
+// (2 / (m^2 cos^3) + 4 / cos) e; e = 2.4e-7 (four float ulps at 1) covers computing the half vector
+// in float. For m = tan(1 deg) that is 2e-3: a narrow lobe cannot be evaluated to 1e-5 in float.
+struct Value {
+  dvec3 f{0.0};
+  dvec3 float_noise{0.0};
+};
+
+// Torrance-Sparrow: F D G / (4 cos_l cos_v), V-cavity G = min(1, 2 NH NV / VH, 2 NH NL / VH).
+Value torrance_sparrow(const dvec3& l, const dvec3& v, double m, const std::function<dvec3(double)>& fresnel_at) {
+  dvec3 h = glm::normalize(l + v);
+  double nh = h.z, vh = glm::dot(v, h);
+  if (nh <= 0.0 || vh <= 0.0) return {};
+  double g = std::min(1.0, std::min(2.0 * nh * v.z / vh, 2.0 * nh * l.z / vh));
+  Value out;
+  out.f = fresnel_at(vh) * beckmann(nh, m) * g / (4.0 * l.z * v.z);
+  out.float_noise = out.f * ((2.0 / (m * m * nh * nh * nh) + 4.0 / nh) * 2.4e-7);
+  return out;
+}
+
+// The course's Oren-Nayar shader (COURSE_EXAMPLES.md sec. 5, after L. Gritz) for light L, eye V,
+// normal z, turned into a BRDF: (L1 + L2) / cos_i / pi.
+dvec3 oren_nayar(const dvec3& l, const dvec3& v, const dvec3& cs, double sigma) {
+  double theta_r = std::acos(v.z);
+  double sigma2 = sigma * sigma;
+  double cos_theta_i = l.z;
+  dvec3 eye_t(v.x, v.y, 0.0), l_t(l.x, l.y, 0.0);
+  double cos_phi_diff =
+      (glm::length(eye_t) > 0.0 && glm::length(l_t) > 0.0) ? glm::dot(glm::normalize(eye_t), glm::normalize(l_t)) : 0.0;
+  double theta_i = std::acos(cos_theta_i);
+  double alpha = std::max(theta_i, theta_r), beta = std::min(theta_i, theta_r);
+  double c1 = 1.0 - 0.5 * sigma2 / (sigma2 + 0.33);
+  double c2 = 0.45 * sigma2 / (sigma2 + 0.09);
+  if (cos_phi_diff >= 0.0)
+    c2 *= std::sin(alpha);
+  else
+    c2 *= std::sin(alpha) - std::pow(2.0 * beta / test::kPi, 3.0);
+  double c3 = 0.125 * sigma2 / (sigma2 + 0.09) * std::pow(4.0 * alpha * beta / (test::kPi * test::kPi), 2.0);
+  dvec3 l1 = cs * (cos_theta_i * (c1 + cos_phi_diff * c2 * std::tan(beta) +
+                                  (1.0 - std::abs(cos_phi_diff)) * c3 * std::tan((alpha + beta) / 2.0)));
+  dvec3 l2 = (cs * cs) * (0.17 * cos_theta_i * sigma2 / (sigma2 + 0.13) *
+                          (1.0 - cos_phi_diff * (4.0 * beta * beta) / (test::kPi * test::kPi)));
+  return (l1 + l2) / cos_theta_i / test::kPi;
+}
+
+// Everything below coat `index` seen from the medium of index n_above, whose interface had the
+// (already clamped) slope m_above.
+Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above);
+
+// Elek, Algorithm 1, for coat `index` over whatever lies below it:
+//   f = f1 + T12 f2(L', V') a t, f1 = TorranceSparrow at V.H with eta = n1 / n_above,
+//   L' = -refract(-L, N, 1/eta), T12 = T21 = 1 - F1, a = exp(-sigma d (1/N.L' + 1/N.V')),
+//   t = (1 - G1) + T21 G1; the slope below is clamped to max(m2, m1).
+Value elek_layer(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above) {
+  const Coat& coat = stack.coats[index];
+  const double eta = coat.ior / n_above;
+  const double m1 = std::max(coat.m, m_above);
+  const dvec3 n(0.0, 0.0, 1.0);
+  Value top = torrance_sparrow(l, v, m1, [&](double vh) { return dvec3(fresnel(vh, eta)); });
+  dvec3 h = glm::normalize(l + v);
+  double f1 = fresnel(glm::dot(v, h), eta);
+  double g1 = std::min(1.0, std::min(2.0 * h.z * v.z / glm::dot(v, h), 2.0 * h.z * l.z / glm::dot(v, h)));
+  dvec3 l_below = -refract(-l, n, 1.0 / eta), v_below = -refract(-v, n, 1.0 / eta);
+  if (l_below.z <= 0.0 || v_below.z <= 0.0) return top;  // no light below (total internal reflection)
+  double t12 = 1.0 - f1, t21 = t12;
+  double t = (1.0 - g1) + t21 * g1;
+  dvec3 a = glm::exp(-coat.sigma * coat.d * (1.0 / l_below.z + 1.0 / v_below.z));
+  Value below = layered(stack, index + 1, l_below, v_below, coat.ior, m1);
+  Value out;
+  out.f = top.f + t12 * below.f * a * t;
+  out.float_noise = top.float_noise + t12 * below.float_noise * a * t;
+  return out;
+}
+
+Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above) {
+  if (index < stack.coats.size()) return elek_layer(stack, index, l, v, n_above, m_above);
+  const Base& base = stack.base;
+  if (base.kind == "lambert") return {base.albedo / test::kPi, dvec3(0.0)};
+  if (base.kind == "oren_nayar") return {oren_nayar(l, v, base.albedo, base.sigma), dvec3(0.0)};
+  // Conductor: n + ik relative to the medium above it.
+  double m2 = std::max(base.m, m_above);
+  return torrance_sparrow(l, v, m2, [&](double vh) {
+    dvec3 f;
+    for (int c = 0; c < 3; ++c) f[c] = fresnel(vh, std::complex<double>(base.n[c], base.k[c]) / n_above);
+    return f;
+  });
+}
+
+struct TranscriptionStats {
+  double max_relative = 0.0;        // max |got - ref| / |ref| over channels float can evaluate to 1e-5
+  double max_relative_all = 0.0;    // the same over all channels
+  double max_over_tolerance = 0.0;  // max |got - ref| / tolerance
+  long limited = 0;                 // pairs where float conditioning allows more than 1e-5
+  std::string worst;
+};
+
+// One or two float ulps up or down per component, at random.
+vec3 nudge(vec3 w, std::mt19937_64& rng) {
+  for (int c = 0; c < 3; ++c) {
+    uint64_t bits = rng();
+    w[c] = std::nextafter(w[c], (bits & 1) ? 2.0f : -2.0f);
+    if (bits & 2) w[c] = std::nextafter(w[c], (bits & 1) ? 2.0f : -2.0f);
+  }
+  return w;
+}
+
+// Compares the evaluator with the transcription over random pairs: 60% spread over the hemisphere
+// (cosines down to 1e-4), 40% near the mirror direction (0.1 to 30 times the top slope, at most
+// 0.5 rad) to exercise the lobes. The tolerance is 1e-5 relative (floor 1e-7 of the pair's largest
+// channel, and 1e-20) plus what float evaluation cannot avoid: the Beckmann term's sensitivity to
+// the rounding of cos_h (Value::float_noise), and the spread of the transcription itself when its
+// inputs move by one or two float ulps, doubled (near-grazing pairs around the mirror direction are
+// ill-conditioned: V.H is a small difference there, and t = (1 - G) + T G cancels when G -> 1 and
+// T -> 0; one ulp of input can change f tenfold).
+TranscriptionStats compare_with_transcription(const Example& example, const Stack& stack, int pairs) {
+  std::mt19937_64 rng(0x5eed0008);
+  TranscriptionStats stats;
+  double m_top = std::max(stack.coats.front().m, 1.0e-3);
+  for (int i = 0; i < pairs; ++i) {
+    dvec3 wo_d = upper_direction(rng, nullptr, 0.0, 0.0, 0.0);
+    dvec3 wi_d = upper_direction(rng, &wo_d, 0.4, 0.1 * m_top, std::min(30.0 * m_top, 0.5));
+    vec3 wo = test::to_float(wo_d), wi = test::to_float(wi_d);
+    // The transcription sees exactly the float directions the evaluator gets.
+    Value ref = layered(stack, 0, test::to_double(wi), test::to_double(wo), 1.0, 0.0);
+    dvec3 spread(0.0);
+    for (int k = 0; k < 8; ++k) {
+      Value moved = layered(stack, 0, test::to_double(nudge(wi, rng)), test::to_double(nudge(wo, rng)), 1.0, 0.0);
+      spread = glm::max(spread, glm::abs(moved.f - ref.f));
+    }
+    vec3 got = example.evaluator.eval(ShadingContext{}, wi, wo);
+    double pair_max = std::max({ref.f.x, ref.f.y, ref.f.z});
+    bool limited = false;
+    for (int c = 0; c < 3; ++c) {
+      double error = std::abs(double(got[c]) - ref.f[c]);
+      double strict = 1.0e-5 * std::abs(ref.f[c]) + 1.0e-7 * pair_max + 1.0e-20;
+      double conditioning = ref.float_noise[c] + 2.0 * spread[c];
+      // Relative errors of values that matter (above the floors).
+      if (std::abs(ref.f[c]) > std::max(1.0e-7 * pair_max, 1.0e-20)) {
+        double relative = error / std::abs(ref.f[c]);
+        stats.max_relative_all = std::max(stats.max_relative_all, relative);
+        if (conditioning > 1.0e-5 * std::abs(ref.f[c]))
+          limited = true;
+        else
+          stats.max_relative = std::max(stats.max_relative, relative);
+      }
+      double tolerance = strict + conditioning;
+      if (error / tolerance > stats.max_over_tolerance) {
+        stats.max_over_tolerance = error / tolerance;
+        std::ostringstream s;
+        s.precision(10);
+        s << "wi " << describe(wi) << " wo " << describe(wo) << " channel " << c << ": evaluator " << got[c]
+          << ", transcription " << ref.f[c] << ", float noise of D " << ref.float_noise[c] << ", spread " << spread[c];
+        stats.worst = s.str();
+      }
+    }
+    if (limited) ++stats.limited;
+  }
+  return stats;
+}
+
+}  // namespace
+
+TEST_CASE("two-layer examples match an independent transcription of Elek's Algorithm 1") {
+  const std::vector<std::string> names = {
+      "acrylic_lacquer", "red_lacquer",  "ceramic_glaze", "frosted_acrylic_paint", "sugar",
+      "latex",           "brass",        "car_paint",     "gold_metallic_paint",   "gold_paint",
+      "blue_metallic",   "silver_paint", "concrete_ball", "christmas_orb"};
+  const int pairs = 10000 / test::kSanitizerDivisor;
+  std::string summary = "Elek transcription vs evaluator (" + std::to_string(pairs) +
+                        " pairs): max relative error where float conditioning allows 1e-5 | max relative error "
+                        "overall | max error / tolerance | pairs where conditioning allows more than 1e-5\n";
+  for (const std::string& name : names) {
+    CAPTURE(name);
+    auto it = std::find_if(examples().begin(), examples().end(), [&](const Example& e) { return e.name == name; });
+    REQUIRE(it != examples().end());
+    Stack stack = read_stack(it->file);
+    REQUIRE(stack.coats.size() == 1);
+    TranscriptionStats stats = compare_with_transcription(*it, stack, pairs);
+    CHECK_MESSAGE(stats.max_over_tolerance <= 1.0, stats.worst);
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-22s %.3g | %.3g | %.3g | %ld\n", name.c_str(), stats.max_relative,
+                  stats.max_relative_all, stats.max_over_tolerance, stats.limited);
+    summary += line;
+  }
+  MESSAGE(summary);
+}
+
+TEST_CASE("house paint matches the transcription of Elek's Algorithm 1 applied recursively") {
+  auto it =
+      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "house_paint"; });
+  REQUIRE(it != examples().end());
+  Stack stack = read_stack(it->file);
+  REQUIRE(stack.coats.size() == 2);
+  TranscriptionStats stats = compare_with_transcription(*it, stack, 10000 / test::kSanitizerDivisor);
+  CHECK_MESSAGE(stats.max_over_tolerance <= 1.0, stats.worst);
+  MESSAGE("house_paint: max relative error where float conditioning allows 1e-5 "
+          << stats.max_relative << ", overall " << stats.max_relative_all << ", max error / tolerance "
+          << stats.max_over_tolerance << ", float-limited pairs " << stats.limited);
+}
+
+// --- 9: the mix ----------------------------------------------------------------------------------
+
+TEST_CASE("checker tiles evaluate as the red stack on red squares and as the gold stack on gold squares") {
+  auto it =
+      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "checker_tiles"; });
+  REQUIRE(it != examples().end());
+  // The two stacks of examples/materials/checker_tiles.json, each on its own.
+  cpu::Evaluator red = test::evaluator_from_text(R"({"format": 1, "materials": [{"name": "red", "surface": "@coat",
+    "nodes": [
+      {"id": "coat", "type": "layer", "interface": "@varnish", "medium": "@tint", "base": "@paint"},
+      {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 1.5},
+      {"id": "tint", "type": "medium/absorbing", "thickness": 1.2, "absorption": [0.01, 0.99, 0.99]},
+      {"id": "paint", "type": "substrate/oren_nayar", "albedo": [1.0, 0.03, 0.05], "sigma": 0.0}]}]})");
+  cpu::Evaluator gold = test::evaluator_from_text(R"({"format": 1, "materials": [{"name": "gold", "surface": "@coat",
+    "nodes": [
+      {"id": "coat", "type": "layer", "interface": "@varnish", "base": "@metal"},
+      {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 1.0},
+      {"id": "metal", "type": "substrate/conductor", "metal": "gold", "roughness_deg": 2.0}]}]})");
+  std::mt19937_64 rng(0x5eed0009);
+  long compared = 0, differs = 0;
+  std::string first;
+  for (int i = 0; i < 20000 / test::kSanitizerDivisor; ++i) {
+    dvec3 wo_d = upper_direction(rng, nullptr, 0.0, 0.0, 0.0);
+    dvec3 wi_d = upper_direction(rng, &wo_d, 0.4, 1.0e-3, 0.3);
+    vec3 wo = test::to_float(wo_d), wi = test::to_float(wi_d);
+    // A point inside a random square (8 x 8 per unit); squares with an even index sum are colour a.
+    int su = int(test::uniform(rng) * 8.0), sv = int(test::uniform(rng) * 8.0);
+    vec2 uv((float(su) + 0.1f + 0.8f * float(test::uniform(rng))) / 8.0f,
+            (float(sv) + 0.1f + 0.8f * float(test::uniform(rng))) / 8.0f);
+    const cpu::Evaluator& alone = (su + sv) % 2 == 0 ? red : gold;
+    vec3 mixed = it->evaluator.eval(at_uv(uv), wi, wo), expected = alone.eval(ShadingContext{}, wi, wo);
+    ++compared;
+    if (mixed != expected && differs++ == 0)
+      first = "uv " + describe(vec3(uv, 0.0f)) + ": mix " + describe(mixed) + " vs stack alone " + describe(expected);
+  }
+  CHECK(compared > 0);
+  CHECK_MESSAGE(differs == 0, first);
+}
