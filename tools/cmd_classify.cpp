@@ -14,28 +14,11 @@ struct ClassifyOptions {
 };
 
 int run_classify(const ClassifyOptions& o) {
-  std::vector<std::filesystem::path> files;
-  try {
-    files = expand_inputs(o.inputs);
-  } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
-    return kExitIo;
-  }
-  int code = kExitOk;
   size_t agree = 0, tagged = 0;
-  for (const auto& file : files) {
-    CheckedFile checked;
-    try {
-      checked = check_file(file);
-    } catch (const IoError& e) {
-      std::cerr << "lamina: " << e.what() << "\n";
-      code = kExitIo;
-      continue;
-    }
+  int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path&, CheckedFile& checked) {
     if (!checked.ok()) {
       for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
-      if (code == kExitOk) code = kExitInvalid;
-      continue;
+      return false;
     }
     for (size_t i = 0; i < checked.document.materials.size(); ++i) {
       const Material& m = checked.document.materials[i];
@@ -51,7 +34,8 @@ int run_classify(const ClassifyOptions& o) {
       std::cout << std::left << std::setw(24) << m.name << " " << std::setw(20) << label << " " << std::setw(16) << tag
                 << " " << c.reason << "\n";
     }
-  }
+    return true;
+  });
   if (tagged > 0) std::cout << agree << " of " << tagged << " class tags agree with the structure\n";
   return code;
 }

@@ -25,25 +25,10 @@ nlohmann::json to_json(const Diagnostic& d) {
 }
 
 int run_validate(const ValidateOptions& o) {
-  std::vector<std::filesystem::path> files;
-  try {
-    files = expand_inputs(o.inputs);
-  } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
-    return kExitIo;
-  }
-  int code = kExitOk;
-  size_t valid = 0, materials = 0, warnings = 0;
+  size_t files = 0, valid = 0, materials = 0, warnings = 0;
   nlohmann::json report = nlohmann::json::array();
-  for (const auto& file : files) {
-    CheckedFile checked;
-    try {
-      checked = check_file(file);
-    } catch (const IoError& e) {
-      std::cerr << "lamina: " << e.what() << "\n";
-      code = kExitIo;
-      continue;
-    }
+  int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path& file, CheckedFile& checked) {
+    ++files;
     bool file_ok = checked.ok() && !(o.werror && !checked.diagnostics.warnings().empty());
     warnings += checked.diagnostics.warnings().size();
     if (o.json) {
@@ -61,14 +46,14 @@ int run_validate(const ValidateOptions& o) {
     if (file_ok) {
       ++valid;
       materials += checked.document.materials.size();
-    } else if (code == kExitOk) {
-      code = kExitInvalid;
     }
-  }
+    return file_ok;
+  });
+  if (code == kExitIo && files == 0) return code;
   if (o.json) {
     std::cout << report.dump(2) << "\n";
   } else if (!o.quiet) {
-    std::cout << valid << " of " << files.size() << " file" << (files.size() == 1 ? "" : "s") << " valid, " << materials
+    std::cout << valid << " of " << files << " file" << (files == 1 ? "" : "s") << " valid, " << materials
               << " material" << (materials == 1 ? "" : "s") << ", " << warnings << " warning"
               << (warnings == 1 ? "" : "s") << "\n";
   }

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
+#include "graph/load.h"
 
 namespace lamina::cli {
 
@@ -20,9 +22,18 @@ void add_validate(CLI::App& app, Runner& runner);
 void add_classify(CLI::App& app, Runner& runner);
 void add_nodes(CLI::App& app, Runner& runner);
 void add_schema(CLI::App& app, Runner& runner);
+void add_eval(CLI::App& app, Runner& runner);
+void add_albedo(CLI::App& app, Runner& runner);
+void add_plot(CLI::App& app, Runner& runner);
 
 // Expands directories into the *.json files under them (sorted); files stay as given.
 // Throws IoError for a path that does not exist.
 std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>& inputs);
+
+// Checks every input file and hands each readable one to `visit`, which returns whether the
+// file passed. Returns the exit code: 1 if any input could not be read, else 2 if any file
+// failed, else 0. I/O problems are printed as "lamina: ..." lines.
+int for_each_checked_file(const std::vector<std::string>& inputs,
+                          const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
 
 }  // namespace lamina::cli

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <iostream>
 
 #include "graph/json_read.h"
 #include "tools/commands.h"
@@ -24,6 +25,30 @@ std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>&
     }
   }
   return files;
+}
+
+int for_each_checked_file(const std::vector<std::string>& inputs,
+                          const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit) {
+  std::vector<std::filesystem::path> files;
+  try {
+    files = expand_inputs(inputs);
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  }
+  int code = kExitOk;
+  for (const auto& file : files) {
+    CheckedFile checked;
+    try {
+      checked = check_file(file);
+    } catch (const IoError& e) {
+      std::cerr << "lamina: " << e.what() << "\n";
+      code = kExitIo;
+      continue;
+    }
+    if (!visit(file, checked) && code == kExitOk) code = kExitInvalid;
+  }
+  return code;
 }
 
 }  // namespace lamina::cli

@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
   add_classify(app, runner);
   add_nodes(app, runner);
   add_schema(app, runner);
+  add_eval(app, runner);
+  add_albedo(app, runner);
+  add_plot(app, runner);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,134 @@
+#include "tools/material_arg.h"
+
+#include <charconv>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+
+#include "graph/compile.h"
+#include "graph/load.h"
+#include "tools/commands.h"
+
+namespace lamina::cli {
+
+void add_material_options(CLI::App& cmd, MaterialArg& arg) {
+  cmd.add_option("file", arg.file, "a material file")->required();
+  cmd.add_option("-m,--material", arg.material, "the material's name (may be omitted when the file has only one)");
+}
+
+int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
+  CheckedFile checked;
+  try {
+    checked = check_file(arg.file);
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  }
+  if (!checked.ok()) {
+    for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
+    for (const auto& d : checked.diagnostics.warnings()) std::cerr << format(d) << "\n";
+    return kExitInvalid;
+  }
+  const auto& materials = checked.document.materials;
+  std::vector<std::string> names;
+  std::string listed;  // "a, b, c"
+  for (const auto& m : materials) {
+    listed += (names.empty() ? "" : ", ") + m.name;
+    names.push_back(m.name);
+  }
+  size_t index = materials.size();
+  if (arg.material.empty()) {
+    if (materials.size() == 1) {
+      index = 0;
+    } else {
+      std::cerr << format(
+                       {Severity::Error, arg.file, "/materials",
+                        "the file has " + std::to_string(materials.size()) + " materials; choose one with --material",
+                        "materials: " + listed})
+                << "\n";
+      return kExitInvalid;
+    }
+  } else {
+    for (size_t i = 0; i < materials.size(); ++i)
+      if (materials[i].name == arg.material) index = i;
+    if (index == materials.size()) {
+      std::string suggestion = closest_match(arg.material, names);
+      std::string hint = (suggestion.empty() ? "" : "did you mean '" + suggestion + "'? ") + "materials: " + listed;
+      std::cerr << format({Severity::Error, arg.file, "/materials", "no material named '" + arg.material + "'", hint})
+                << "\n";
+      return kExitInvalid;
+    }
+  }
+  const std::optional<Graph>& graph = checked.graphs[index];
+  if (!graph) throw std::logic_error("load_material: a valid file without a graph for " + names[index]);
+  try {
+    out.emplace(compile(*graph, arg.file));
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  } catch (const std::length_error& e) {
+    std::cerr << format({Severity::Error, arg.file, "/materials/" + std::to_string(index), e.what(),
+                         "split the material into smaller stacks"})
+              << "\n";
+    return kExitInvalid;
+  }
+  return kExitOk;
+}
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+}  // namespace
+
+std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count) {
+  static const char* const kShapes[] = {"", "X", "U,V", "X,Y,Z"};
+  std::string shape = count < 4 ? kShapes[count] : std::to_string(count) + " numbers";
+  auto fail = [&](const std::string& why) {
+    std::cerr << "lamina: " << option << ": " << why << " (write " << shape << ", e.g. "
+              << (count == 2 ? "0.5,0.5" : "0.3,0,1") << ")\n";
+    return std::nullopt;
+  };
+  std::vector<float> values;
+  std::string_view rest = text;
+  while (true) {
+    size_t comma = rest.find(',');
+    std::string_view item = trim(rest.substr(0, comma));
+    float value = 0.0f;
+    const char* first = item.data();
+    const char* last = item.data() + item.size();
+    if (!item.empty() && *first == '+') ++first;
+    auto [end, ec] = std::from_chars(first, last, value);
+    if (item.empty() || ec != std::errc() || end != last || !std::isfinite(value))
+      return fail("'" + std::string(item) + "' in '" + std::string(text) + "' is not a finite number");
+    values.push_back(value);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  if (values.size() != count)
+    return fail("expected " + std::to_string(count) + " numbers, got " + std::to_string(values.size()) + " in '" +
+                std::string(text) + "'");
+  return values;
+}
+
+std::optional<glm::vec3> parse_direction(std::string_view option, std::string_view text) {
+  auto numbers = parse_numbers(option, text, 3);
+  if (!numbers) return std::nullopt;
+  glm::vec3 v((*numbers)[0], (*numbers)[1], (*numbers)[2]);
+  float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (largest == 0.0f) {
+    std::cerr << "lamina: " << option << ": the zero vector '" << text << "' has no direction (give X,Y,Z with z "
+              << "along the normal, e.g. 0,0,1)\n";
+    return std::nullopt;
+  }
+  float length_squared = glm::dot(v, v);
+  // Rescale first when squaring would overflow or underflow; otherwise exactly glm::normalize.
+  if (!std::isfinite(length_squared) || length_squared < 1.0e-30f) v /= largest;
+  return glm::normalize(v);
+}
+
+}  // namespace lamina::cli

@@ -1,0 +1,41 @@
+// What the evaluating commands (eval, albedo, plot) share: the FILE and --material arguments, a
+// checked and compiled material's CPU evaluator, and "X,Y,Z" number lists on the command line.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+// compile.h first: it includes graph.h before program.h; the other order makes -Wshadow flag the
+// enumerators Interface and Medium (ValueType, NodeKind) against program.h's variant types.
+#include "graph/compile.h"
+#include "graph/cpu/evaluator.h"
+
+namespace lamina::cli {
+
+struct MaterialArg {
+  std::string file;
+  std::string material;  // empty: the file's only material
+};
+
+// Adds the positional FILE (required) and --material NAME to `cmd`.
+void add_material_options(CLI::App& cmd, MaterialArg& arg);
+
+// Reads and checks the file, finds the material, compiles it and builds its evaluator. On failure
+// prints the problem on stderr and returns the exit code, else returns kExitOk with `out` set:
+//   kExitInvalid  the file is invalid (its diagnostics, as `lamina validate` prints them), the
+//                 material name is unknown or missing from a file with several (the names are
+//                 listed), or the material is too large for the CPU evaluator;
+//   kExitIo       the file or one of its textures cannot be read.
+int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out);
+
+// Parses `count` comma-separated finite numbers ("0.3,0,1"; spaces around them are allowed).
+// On a mistake prints "lamina: OPTION: ..." on stderr and returns nothing.
+std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count);
+
+// A direction from "X,Y,Z", normalised; a zero vector is a mistake (printed, nothing returned).
+std::optional<glm::vec3> parse_direction(std::string_view option, std::string_view text);
+
+}  // namespace lamina::cli
