@@ -1,0 +1,123 @@
+// Cost of the layered evaluation against a single Torrance-Sparrow conductor lobe, in one run.
+// Run: build/release/tests/bench/lamina_bench   (the ratios are printed as counters)
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "graph/compile.h"
+#include "graph/cpu/evaluator.h"
+#include "graph/load.h"
+
+namespace {
+
+constexpr size_t kQueries = 4096;
+
+// One Torrance-Sparrow lobe: the Car Paint's aluminium base without its varnish.
+const char* kSingleLobe = R"({"format": 1, "materials": [{"name": "single_lobe", "surface": "@metal", "nodes": [
+    {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0}]}]})";
+
+lamina::cpu::Evaluator evaluator_from_text(const char* text) {
+  auto checked = lamina::check_text(text, "bench.json");
+  return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], "bench.json"));
+}
+
+lamina::cpu::Evaluator evaluator_from_example(const char* name) {
+  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name + ".json";
+  auto checked = lamina::check_file(file);
+  return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], file));
+}
+
+struct Queries {
+  std::vector<glm::vec3> wi, wo;
+  std::vector<glm::vec2> u;
+  std::vector<float> u_lobe;
+  Queries() {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    auto direction = [&] {
+      float z = std::max(uniform(rng), 0.01f), phi = 6.2831853f * uniform(rng);
+      float s = std::sqrt(1.0f - z * z);
+      return glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+    };
+    for (size_t i = 0; i < kQueries; ++i) {
+      wi.push_back(direction());
+      wo.push_back(direction());
+      u.emplace_back(uniform(rng), uniform(rng));
+      u_lobe.push_back(uniform(rng));
+    }
+  }
+};
+
+const Queries& queries() {
+  static const Queries q;
+  return q;
+}
+
+void eval_scalar(benchmark::State& state, const lamina::cpu::Evaluator& e) {
+  const Queries& q = queries();
+  lamina::ShadingContext ctx;
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(e.eval(ctx, q.wi[i], q.wo[i]));
+    i = (i + 1) % kQueries;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void eval_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) {
+  const Queries& q = queries();
+  std::vector<glm::vec3> f(kQueries);
+  for (auto _ : state) {
+    e.eval(q.wi, q.wo, {}, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.SetItemsProcessed(state.iterations() * int64_t(kQueries));
+}
+
+void sample_scalar(benchmark::State& state, const lamina::cpu::Evaluator& e) {
+  const Queries& q = queries();
+  lamina::ShadingContext ctx;
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(e.sample(ctx, q.wo[i], q.u[i], q.u_lobe[i]));
+    i = (i + 1) % kQueries;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+const lamina::cpu::Evaluator& single() {
+  static const auto e = evaluator_from_text(kSingleLobe);
+  return e;
+}
+const lamina::cpu::Evaluator& car_paint() {
+  static const auto e = evaluator_from_example("car_paint");
+  return e;
+}
+const lamina::cpu::Evaluator& house_paint() {
+  static const auto e = evaluator_from_example("house_paint");
+  return e;
+}
+
+void BM_eval_single_lobe(benchmark::State& s) { eval_scalar(s, single()); }
+void BM_eval_car_paint_2_layers(benchmark::State& s) { eval_scalar(s, car_paint()); }
+void BM_eval_house_paint_3_layers(benchmark::State& s) { eval_scalar(s, house_paint()); }
+void BM_eval_batch_single_lobe(benchmark::State& s) { eval_batched(s, single()); }
+void BM_eval_batch_car_paint_2_layers(benchmark::State& s) { eval_batched(s, car_paint()); }
+void BM_eval_batch_house_paint_3_layers(benchmark::State& s) { eval_batched(s, house_paint()); }
+void BM_sample_single_lobe(benchmark::State& s) { sample_scalar(s, single()); }
+void BM_sample_car_paint_2_layers(benchmark::State& s) { sample_scalar(s, car_paint()); }
+void BM_sample_house_paint_3_layers(benchmark::State& s) { sample_scalar(s, house_paint()); }
+
+}  // namespace
+
+BENCHMARK(BM_eval_single_lobe);
+BENCHMARK(BM_eval_car_paint_2_layers);
+BENCHMARK(BM_eval_house_paint_3_layers);
+BENCHMARK(BM_eval_batch_single_lobe);
+BENCHMARK(BM_eval_batch_car_paint_2_layers);
+BENCHMARK(BM_eval_batch_house_paint_3_layers);
+BENCHMARK(BM_sample_single_lobe);
+BENCHMARK(BM_sample_car_paint_2_layers);
+BENCHMARK(BM_sample_house_paint_3_layers);
+
+BENCHMARK_MAIN();
