@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake ninja-build g++ libembree-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
-  libglm-dev libtinygltf-dev doctest-dev libcli11-dev libbenchmark-dev clang-format)
+  libglm-dev libtinygltf-dev doctest-dev libcli11-dev libbenchmark-dev clang-format glslang-tools
+  fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
