@@ -11,3 +11,22 @@ $lamina validate examples/materials
 echo
 echo "== lamina classify examples/materials"
 $lamina classify examples/materials
+echo
+echo "== lamina albedo: directional albedo (R G B) of every example at theta 0, 60 and 85 degrees"
+printf '%-24s %-26s %-26s %s\n' material "0 deg" "60 deg" "85 deg"
+for file in examples/materials/*.json; do
+  row=$(printf '%-24s' "$(basename "$file" .json)")
+  for theta in 0 60 85; do
+    values=$($lamina albedo "$file" --theta "$theta" | sed 's/^albedo = //')
+    row+=$(printf ' %-26s' "$(printf '%.3f ' $values)")
+  done
+  echo "$row"
+done
+echo
+plots=build/plots
+mkdir -p "$plots"
+echo "== lamina plot: BRDF slices and a lit sphere of every example, in $plots/"
+for file in examples/materials/*.json; do
+  $lamina plot "$file" -o "$plots/$(basename "$file" .json).png"
+done
+ls "$plots"

@@ -40,18 +40,9 @@ struct Node {
   vec3 n, k;
 };
 
-constexpr float kPi = 3.14159265358979f;
-
-float slope(float value, bool degrees) {
-  if (degrees) return std::tan(std::clamp(value, 0.0f, 45.0f) * kPi / 180.0f);
-  return std::clamp(value, 0.0f, 1.0f);
-}
+const float kPi = k::LAMINA_PI;
 
 vec3 clamp01(vec3 c) { return glm::clamp(c, vec3(0.0f), vec3(1.0f)); }
-
-// V.H and L.H are equal in exact arithmetic; their mean is bitwise the same when L and V swap, so
-// rounding cannot break reciprocity where L + V nearly cancels (grazing, opposite directions).
-float symmetric_dot(vec3 l, vec3 v, vec3 h) { return 0.5f * (glm::dot(v, h) + glm::dot(l, h)); }
 
 }  // namespace
 
@@ -115,12 +106,7 @@ void Evaluator::resolve(const ShadingContext& ctx, Resolved& r) const {
       r.regs[c->color_slot + 2] = color.z;
       r.regs[c->value_slot] = v;
     } else if (const auto* img = std::get_if<ImageOp>(&op)) {
-      // Rotate about the centre, then scale, then offset (texture/image's declaration).
-      float angle = img->uv_rotation_deg * kPi / 180.0f;
-      vec2 centred = ctx.uv - vec2(0.5f);
-      vec2 rotated(std::cos(angle) * centred.x - std::sin(angle) * centred.y,
-                   std::sin(angle) * centred.x + std::cos(angle) * centred.y);
-      vec2 uv = (rotated + vec2(0.5f)) * img->uv_scale + img->uv_offset;
+      vec2 uv = k::lamina_image_uv(ctx.uv, img->uv_rotation_deg, img->uv_scale, img->uv_offset);
       glm::vec4 texel = sample_bilinear(*img->image, uv, Wrap(img->wrap));
       r.regs[img->color_slot] = texel.x;
       r.regs[img->color_slot + 1] = texel.y;
@@ -139,7 +125,7 @@ void Evaluator::resolve(const ShadingContext& ctx, Resolved& r) const {
       const auto& d = std::get<DielectricInterface>(layer->interface);
       n.kind = Kind::Layer;
       n.ior = std::clamp(r.read(d.ior), 1.0f, 4.0f);
-      n.m = slope(r.read(d.roughness.value), d.roughness.degrees);
+      n.m = k::lamina_slope(r.read(d.roughness.value), d.roughness.degrees);
       n.distribution = int(d.distribution);
       n.absorption = vec3(0.0f);
       n.thickness = 0.0f;
@@ -164,7 +150,7 @@ void Evaluator::resolve(const ShadingContext& ctx, Resolved& r) const {
       n.kind = Kind::Conductor;
       n.n = glm::max(r.read(c->n), vec3(1.0e-3f));
       n.k = glm::max(r.read(c->k), vec3(0.0f));
-      n.m = slope(r.read(c->roughness.value), c->roughness.degrees);
+      n.m = k::lamina_slope(r.read(c->roughness.value), c->roughness.degrees);
       n.distribution = int(c->distribution);
     }
   }
@@ -179,35 +165,21 @@ vec3 Evaluator::eval_node(const Resolved& r, int index, vec3 l, vec3 v, float n_
   const Node& n = r.nodes[size_t(index)];
   switch (n.kind) {
     case Kind::Layer: {
-      float eta = n.ior / n_above;
-      float m = std::max(r.clamp ? std::max(n.m, m_above) : n.m, k::LAMINA_MIN_SLOPE);
-      vec3 h = glm::normalize(l + v);
-      float v_dot_h = symmetric_dot(l, v, h);
-      float fresnel = k::fresnel_dielectric(v_dot_h, eta);
-      float d = k::d_microfacet(n.distribution, h.z, m);
-      float g = k::g_microfacet(n.distribution, l.z, v.z, h.z, v_dot_h, m);
-      vec3 f = k::torrance_sparrow(vec3(fresnel), d, g, l.z, v.z);
-      vec3 l_below = k::refract_down(l, eta);
-      vec3 v_below = k::refract_down(v, eta);
+      float m = k::lamina_effective_slope(n.m, m_above, r.clamp);
+      vec3 l_below, v_below, carry;
+      vec3 f = k::lamina_interface_eval(l, v, n.ior / n_above, n.distribution, m, n.absorption, n.thickness, l_below,
+                                        v_below, carry);
       if (l_below.z <= 0.0f || v_below.z <= 0.0f) return f;  // total internal reflection: nothing below
-      float transmittance = 1.0f - fresnel;
-      vec3 a = k::absorption(n.absorption, n.thickness, l_below.z, v_below.z);
-      float t = k::tir_compensation(transmittance, g);
-      return f + transmittance * eval_node(r, n.base, l_below, v_below, n.ior, m) * a * t;
+      return f + eval_node(r, n.base, l_below, v_below, n.ior, m) * carry;
     }
     case Kind::Mix:
       return glm::mix(eval_node(r, n.a, l, v, n_above, m_above), eval_node(r, n.b, l, v, n_above, m_above), n.weight);
-    case Kind::Lambert: return (l.z > 0.0f && v.z > 0.0f) ? k::lambert(n.albedo) : vec3(0.0f);
+    case Kind::Lambert: return k::lamina_lambert_eval(l, v, n.albedo);
     case Kind::OrenNayar: return k::oren_nayar(l, v, n.albedo, n.sigma);
     case Kind::Conductor: {
-      float m = std::max(r.clamp ? std::max(n.m, m_above) : n.m, k::LAMINA_MIN_SLOPE);
-      vec3 h = glm::normalize(l + v);
-      float v_dot_h = symmetric_dot(l, v, h);
+      float m = k::lamina_effective_slope(n.m, m_above, r.clamp);
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one).
-      vec3 fresnel = k::fresnel_conductor(v_dot_h, n.n / n_above, n.k / n_above);
-      float d = k::d_microfacet(n.distribution, h.z, m);
-      float g = k::g_microfacet(n.distribution, l.z, v.z, h.z, v_dot_h, m);
-      return k::torrance_sparrow(fresnel, d, g, l.z, v.z);
+      return k::lamina_conductor_eval(l, v, n.n / n_above, n.k / n_above, n.distribution, m);
     }
   }
   return vec3(0.0f);
@@ -239,15 +211,13 @@ int Evaluator::weights_resolved(const Resolved& r, vec3 wo, float* weights, Lobe
         throughput *= step.side == 0 ? 1.0f - n.weight : n.weight;
         continue;
       }
-      float eta = n.ior / n_above;
-      float f0 = k::fresnel_dielectric(v.z, eta);
-      vec3 below = k::refract_down(v, eta);
+      float factor = 0.0f;
+      vec3 below = k::lamina_selection_step(v, n.ior / n_above, n.absorption, n.thickness, factor);
       if (below.z <= 0.0f) {
         valid = false;
         break;
       }
-      throughput *=
-          k::lamina_sqr(1.0f - f0) * k::lamina_luminance(k::absorption(n.absorption, n.thickness, below.z, below.z));
+      throughput *= factor;
       m_above = r.clamp ? std::max(n.m, m_above) : n.m;
       n_above = n.ior;
       v = below;
@@ -269,7 +239,7 @@ int Evaluator::weights_resolved(const Resolved& r, vec3 wo, float* weights, Lobe
     frame.v = v;
     frame.n_above = n_above;
     float own_m = (n.kind == Kind::Layer || n.kind == Kind::Conductor) ? n.m : 0.0f;
-    frame.m = std::max(r.clamp ? std::max(own_m, m_above) : own_m, k::LAMINA_MIN_SLOPE);
+    frame.m = k::lamina_effective_slope(own_m, m_above, r.clamp);
     frame.valid = valid;
     weights[j] = estimate;
     total += estimate;
@@ -293,35 +263,6 @@ int Evaluator::weights_resolved(const Resolved& r, vec3 wo, float* weights, Lobe
 namespace {
 
 bool is_microfacet(Kind kind) { return kind == Kind::Layer || kind == Kind::Conductor; }
-
-// Density of the microfacet reflection lobe over the whole sphere of directions w: the normal
-// h = +-normalize(v + w) (the one above the horizon) drawn with density D(h) cos(h), times the
-// Jacobian 1 / (4 |v.h|) of reflection (Walter et al. 2007, eq. 14).
-float reflection_density(int distribution, float m, vec3 v, vec3 w) {
-  vec3 sum = v + w;
-  float length = glm::length(sum);
-  if (length < 1.0e-7f) return 0.0f;
-  vec3 h = sum / length;
-  if (h.z < 0.0f) h = -h;
-  float v_dot_h = std::abs(glm::dot(v, h));
-  if (v_dot_h <= 0.0f) return 0.0f;
-  return k::pdf_microfacet_normal(distribution, m, h.z) / (4.0f * v_dot_h);
-}
-
-// Reflections that would leave below the horizon are mirrored back above it, so the lobe's
-// density over the upper hemisphere is the sum of both halves and integrates to exactly 1.
-float folded_reflection_density(int distribution, float m, vec3 v, vec3 w) {
-  return reflection_density(distribution, m, v, w) +
-         reflection_density(distribution, m, v, k::mirror_across_horizon(w));
-}
-
-// The same azimuth as w with the given cosine.
-vec3 with_cosine(vec3 w, float cos_theta) {
-  float sin_theta = k::lamina_safe_sqrt(1.0f - cos_theta * cos_theta);
-  float planar = std::sqrt(w.x * w.x + w.y * w.y);
-  if (planar <= 0.0f) return vec3(sin_theta, 0.0f, cos_theta);
-  return vec3(w.x / planar * sin_theta, w.y / planar * sin_theta, cos_theta);
-}
 
 }  // namespace
 
@@ -355,16 +296,10 @@ float Evaluator::pdf_resolved(const Resolved& r, vec3 wi, vec3 wo) const {
     if (w.z <= 0.0f) continue;
     const Node& n = r.nodes[size_t(lobe.node)];
     float density = 0.0f;
-    if (is_microfacet(n.kind)) {
-      density = folded_reflection_density(n.distribution, frame.m, frame.v, w) * jacobian;
-      if (n_above > 1.0f) {
-        float cos_critical = std::sqrt(1.0f - 1.0f / (n_above * n_above));
-        density += folded_reflection_density(n.distribution, frame.m, frame.v, with_cosine(wi, cos_critical * wi.z)) *
-                   cos_critical;
-      }
-    } else {
-      density = w.z * n_above * n_above / kPi * jacobian;
-    }
+    if (is_microfacet(n.kind))
+      density = k::lamina_microfacet_lobe_pdf(n.distribution, frame.m, frame.v, w, jacobian, wi, n_above);
+    else
+      density = k::lamina_diffuse_lobe_pdf(w, jacobian, n_above);
     pdf += weights[size_t(j)] * density;
   }
   return pdf;
@@ -417,23 +352,12 @@ Sample Evaluator::sample(const ShadingContext& ctx, vec3 wo, vec2 u, float u_lob
   float n_frame = frame.n_above;
   vec3 wi(0.0f);
   if (is_microfacet(n.kind)) {
-    vec3 h = k::sample_microfacet_normal(n.distribution, frame.m, u);
-    vec3 w = 2.0f * glm::dot(frame.v, h) * h - frame.v;
-    if (w.z < 0.0f) w = k::mirror_across_horizon(w);
+    bool inside_cone = true;
+    vec3 w = k::lamina_sample_microfacet_lobe(n.distribution, frame.m, frame.v, u, n_frame, inside_cone);
     if (w.z <= 0.0f) return s;
-    if ((1.0f - w.z * w.z) * n_frame * n_frame <= 1.0f) {
-      wi = carry_up(w, lobe.path, r.nodes);
-    } else {
-      float cos_critical = std::sqrt(1.0f - 1.0f / (n_frame * n_frame));
-      wi = with_cosine(w, w.z / cos_critical);
-    }
+    wi = inside_cone ? carry_up(w, lobe.path, r.nodes) : w;
   } else {
-    // Cosine-weighted inside the exit cone: sin^2 uniform on [0, 1/n^2].
-    float sin2 = u.x / (n_frame * n_frame);
-    float phi = 2.0f * kPi * u.y;
-    float sin_theta = std::sqrt(sin2);
-    vec3 w(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::sqrt(1.0f - sin2));
-    wi = carry_up(w, lobe.path, r.nodes);
+    wi = carry_up(k::lamina_sample_diffuse_lobe(u, n_frame), lobe.path, r.nodes);
   }
   if (wi.z <= 0.0f) return s;
   wi = glm::normalize(wi);

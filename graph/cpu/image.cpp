@@ -34,42 +34,16 @@ std::shared_ptr<const LinearImage> load_linear_image(const std::filesystem::path
   return image;
 }
 
-namespace {
-
-int wrap_index(int i, int size, Wrap wrap) {
-  switch (wrap) {
-    case Wrap::Clamp: return std::clamp(i, 0, size - 1);
-    case Wrap::Mirror: {
-      int period = 2 * size;
-      int j = ((i % period) + period) % period;
-      return j < size ? j : period - 1 - j;
-    }
-    case Wrap::Repeat:
-    default: return ((i % size) + size) % size;
-  }
-}
-
-}  // namespace
-
 glm::vec4 sample_bilinear(const LinearImage& image, glm::vec2 uv, Wrap wrap) {
   if (image.width <= 0 || image.height <= 0) return glm::vec4(0.0f);
-  float x = uv.x * float(image.width) - 0.5f;
-  float y = uv.y * float(image.height) - 0.5f;
-  if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec4(0.0f);
-  // Keep the integer part representable; repeat and mirror are periodic anyway.
-  x = std::clamp(x, -1.0e6f, 1.0e6f);
-  y = std::clamp(y, -1.0e6f, 1.0e6f);
-  float fx = std::floor(x), fy = std::floor(y);
-  float tx = x - fx, ty = y - fy;
-  int x0 = int(fx), y0 = int(fy);
-  auto texel = [&](int i, int j) {
-    int xi = wrap_index(i, image.width, wrap);
-    int yj = wrap_index(j, image.height, wrap);
-    return image.texels[static_cast<size_t>(yj) * static_cast<size_t>(image.width) + static_cast<size_t>(xi)];
+  glm::ivec4 t;
+  glm::vec2 w = kernels::lamina_bilinear_texels(uv, image.width, image.height, int(wrap), t);
+  auto texel = [&](int x, int y) {
+    return image.texels[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
   };
-  glm::vec4 top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), tx);
-  glm::vec4 bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), tx);
-  return glm::mix(top, bottom, ty);
+  glm::vec4 top = glm::mix(texel(t.x, t.y), texel(t.z, t.y), w.x);
+  glm::vec4 bottom = glm::mix(texel(t.x, t.w), texel(t.z, t.w), w.x);
+  return glm::mix(top, bottom, w.y);
 }
 
 }  // namespace lamina

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every kernel in nodes/kernels/*.glsl compiles as GLSL 330 core, 450 core and ES 3.00.
-# For each target: the prelude the GLSL back end writes, the six files in include order, and a
+# For each target: the prelude the GLSL back end writes, the seven files in include order, and a
 # fragment main() that calls every kernel once, validated by glslangValidator.
 # Usage: glsl_kernels_check.sh <project source dir>
 set -euo pipefail
@@ -52,6 +52,25 @@ void main() {
   // texture
   f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
   s += srgb_to_linear(w);
+  // stack
+  vec3 lb = vec3(0.0f);
+  vec3 vb = vec3(0.0f);
+  vec3 carry = vec3(0.0f);
+  bool inside = false;
+  ivec4 texels = ivec4(0);
+  f += lamina_slope(c, true) + lamina_effective_slope(m, 0.1f, true) + lamina_symmetric_dot(w, v, w);
+  s += lamina_interface_eval(w, v, 1.5f, 0, m, vec3(0.1f), 0.5f, lb, vb, carry) + lb + vb + carry;
+  s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
+  s += lamina_selection_step(v, 1.5f, vec3(0.1f), 0.5f, f);
+  f += lamina_reflection_density(0, m, v, w) + lamina_folded_reflection_density(1, m, v, w);
+  s += lamina_with_cosine(w, c);
+  f += lamina_cos_critical(1.5f) + lamina_microfacet_lobe_pdf(0, m, v, w, 1.0f, w, 1.5f);
+  f += lamina_diffuse_lobe_pdf(w, 1.0f, 1.5f);
+  s += lamina_sample_microfacet_lobe(2, m, v, v_uv, 1.5f, inside) + lamina_sample_diffuse_lobe(v_uv, 1.5f);
+  s.xy += lamina_image_uv(v_uv, 30.0f, vec2(2.0f), vec2(0.1f));
+  f += float(lamina_positive_mod(-3, 4) + lamina_wrap_index(-2, 8, 2));
+  s.xy += lamina_bilinear_texels(v_uv, 16, 8, 0, texels) + vec2(texels.xy);
+  if (inside) f += 1.0f;
   frag_color = vec4(s, f);
 }
 GLSL
@@ -64,11 +83,11 @@ for target in 330 450 es300; do
     case $target in
       330) echo "#version 330 core" ;;
       450) echo "#version 450 core" ;;
-      es300) printf '%s\n' "#version 300 es" "precision highp float;" ;;
+      es300) printf '%s\n' "#version 300 es" "precision highp float;" "precision highp int;" ;;
     esac
     echo "#define LAMINA_OUT(T) out T"
     echo "#define LAMINA_FN"
-    for f in common fresnel microfacet diffuse layer texture; do
+    for f in common fresnel microfacet diffuse layer texture stack; do
       cat "$kernels/$f.glsl"
     done
     main_body

@@ -626,3 +626,91 @@ TEST_CASE("kernels: no kernel returns NaN or inf for grazing, zero or smooth-lim
   CHECK(is_finite(k::remap_value(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, false)));
   CHECK(is_finite(k::srgb_to_linear(vec3(-1.0f, 0.0f, 2.0f))));
 }
+
+// ---------------------------------------------------------------------------------------------
+// stack.glsl
+
+TEST_CASE("kernels: lamina_slope converts degrees to a tangent and clamps both forms") {
+  // tan(30 deg) = 0.5773502691896257
+  CHECK(double(k::lamina_slope(30.0f, true)) == rel(0.5773502691896257));
+  CHECK(double(k::lamina_slope(60.0f, true)) == rel(1.0));  // clamped to 45 deg
+  CHECK(k::lamina_slope(-5.0f, true) == 0.0f);
+  CHECK(k::lamina_slope(0.3f, false) == 0.3f);
+  CHECK(k::lamina_slope(1.7f, false) == 1.0f);
+  CHECK(k::lamina_effective_slope(0.1f, 0.4f, true) == 0.4f);
+  CHECK(k::lamina_effective_slope(0.1f, 0.4f, false) == 0.1f);
+  CHECK(k::lamina_effective_slope(0.0f, 0.0f, false) == k::LAMINA_MIN_SLOPE);
+}
+
+TEST_CASE("kernels: lamina_positive_mod and lamina_wrap_index handle negative texel indices") {
+  CHECK(k::lamina_positive_mod(-1, 4) == 3);
+  CHECK(k::lamina_positive_mod(-4, 4) == 0);
+  CHECK(k::lamina_positive_mod(-5, 4) == 3);
+  CHECK(k::lamina_positive_mod(9, 4) == 1);
+  CHECK(k::lamina_positive_mod(-1000000, 7) == ((-1000000 % 7) + 7) % 7);
+  // repeat
+  CHECK(k::lamina_wrap_index(-1, 4, 0) == 3);
+  CHECK(k::lamina_wrap_index(4, 4, 0) == 0);
+  // clamp to edge
+  CHECK(k::lamina_wrap_index(-3, 4, 1) == 0);
+  CHECK(k::lamina_wrap_index(7, 4, 1) == 3);
+  // mirrored repeat: ... 1 0 | 0 1 2 3 | 3 2 1 0 | 0 ...
+  CHECK(k::lamina_wrap_index(-1, 4, 2) == 0);
+  CHECK(k::lamina_wrap_index(-2, 4, 2) == 1);
+  CHECK(k::lamina_wrap_index(4, 4, 2) == 3);
+  CHECK(k::lamina_wrap_index(7, 4, 2) == 0);
+  CHECK(k::lamina_wrap_index(8, 4, 2) == 0);
+}
+
+TEST_CASE("kernels: lamina_bilinear_texels puts texel centres at (i + 0.5) / size") {
+  glm::ivec4 t;
+  // uv (0.5, 0.5) on 4 x 2: x = 1.5, y = 0.5 -> texels (1, 0, 2, 1), weights (0.5, 0.5).
+  vec2 w = k::lamina_bilinear_texels(vec2(0.5f, 0.5f), 4, 2, 0, t);
+  CHECK(t == glm::ivec4(1, 0, 2, 1));
+  CHECK(w == vec2(0.5f, 0.5f));
+  // uv (0, 0) repeats onto the last texel with weight 0.5: x = -0.5 -> x0 = -1 -> 3.
+  w = k::lamina_bilinear_texels(vec2(0.0f), 4, 2, 0, t);
+  CHECK(t == glm::ivec4(3, 1, 0, 0));
+  CHECK(w == vec2(0.5f, 0.5f));
+  // A NaN coordinate reads texel (0, 0) with weight 0.
+  w = k::lamina_bilinear_texels(vec2(std::nanf(""), 0.5f), 4, 2, 0, t);
+  CHECK(t == glm::ivec4(0));
+  CHECK(w == vec2(0.0f));
+}
+
+TEST_CASE("kernels: lamina_image_uv rotates about the centre, then scales and offsets") {
+  // (1, 0.5) rotated 90 deg about (0.5, 0.5) -> (0.5, 1); times (2, 3) plus (0.1, 0.2) -> (1.1, 3.2)
+  vec2 uv = k::lamina_image_uv(vec2(1.0f, 0.5f), 90.0f, vec2(2.0f, 3.0f), vec2(0.1f, 0.2f));
+  CHECK(double(uv.x) == doctest::Approx(1.1).epsilon(1e-6));
+  CHECK(double(uv.y) == doctest::Approx(3.2).epsilon(1e-6));
+}
+
+TEST_CASE("kernels: the interface step carries T a t and returns the interface's own reflection") {
+  const vec3 l = direction(30, 0), v = direction(45, 180);
+  vec3 lb, vb, carry;
+  const float m = 0.2f, eta = 1.5f;
+  const vec3 f = k::lamina_interface_eval(l, v, eta, 0, m, vec3(0.1f, 0.2f, 0.3f), 2.0f, lb, vb, carry);
+  const vec3 h = glm::normalize(l + v);
+  const float vh = 0.5f * (glm::dot(v, h) + glm::dot(l, h));
+  const float fr = k::fresnel_dielectric(vh, eta);
+  const float g = k::g_microfacet(0, l.z, v.z, h.z, vh, m);
+  CHECK_VEC3_NEAR(f, k::torrance_sparrow(vec3(fr), k::d_microfacet(0, h.z, m), g, l.z, v.z), 1e-7f);
+  CHECK_VEC3_NEAR(lb, k::refract_down(l, eta), 0.0f);
+  const vec3 a = k::absorption(vec3(0.1f, 0.2f, 0.3f), 2.0f, lb.z, vb.z);
+  CHECK_VEC3_NEAR(carry, (1.0f - fr) * a * ((1.0f - g) + (1.0f - fr) * g), 1e-7f);
+}
+
+TEST_CASE("kernels: lobe sampling stays in the upper hemisphere and its densities are positive there") {
+  Uniform u(17);
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 v = u.hemisphere();
+    bool inside = false;
+    const vec3 w = k::lamina_sample_microfacet_lobe(0, 0.3f, v, u.next2(), 1.5f, inside);
+    if (w == vec3(0.0f)) continue;
+    CHECK(w.z > 0.0f);
+    CHECK(std::abs(glm::length(w) - 1.0f) < 1e-5f);
+    if (inside) CHECK((1.0f - w.z * w.z) * 2.25f <= 1.0f);
+    const vec3 d = k::lamina_sample_diffuse_lobe(u.next2(), 1.5f);
+    CHECK(d.z >= k::lamina_cos_critical(1.5f) - 1e-6f);
+  }
+}
