@@ -6,6 +6,7 @@
 #include "graph/cpu/image.h"
 #include "graph/json_write.h"
 #include "graph/load.h"
+#include "nodes/kernels/kernels.h"
 #include "nodes/metals.h"
 
 namespace lamina {
@@ -93,12 +94,13 @@ class Compiler {
   void compile_texture(size_t i) {
     const std::string& type = g_.decl(i).type;
     if (type == "texture/checker") {
-      CheckerOp op{color(i, "color_a"), color(i, "color_b"), vec2(i, "scale"), allocate(3), allocate(1)};
+      CheckerOp op{color(i, "color_a"), color(i, "color_b"), vec2(i, "scale"), allocate(3), allocate(1), g_.node(i).id};
       set_output(i, "color", Output{{}, ColorRef{{}, op.color_slot}});
       set_output(i, "value", Output{ScalarRef{0.0f, op.value_slot}, {}});
       program_.ops.push_back(op);
     } else if (type == "texture/image") {
       ImageOp op;
+      op.node = g_.node(i).id;
       op.file = text(i, "file");
       std::filesystem::path path(op.file);
       if (path.is_relative()) path = std::filesystem::path(file_).parent_path() / path;
@@ -117,6 +119,7 @@ class Compiler {
       program_.ops.push_back(op);
     } else if (type == "math/remap") {
       RemapOp op;
+      op.node = g_.node(i).id;
       op.value = scalar(i, "value");
       op.in_min = float(std::get<double>(value(i, "in_min")));
       op.in_max = float(std::get<double>(value(i, "in_max")));
@@ -124,10 +127,8 @@ class Compiler {
       op.out_max = float(std::get<double>(value(i, "out_max")));
       op.clamp = std::get<bool>(value(i, "clamp"));
       if (op.value.slot < 0) {
-        // Constant input: fold the remap away.
-        float t = (op.value.constant - op.in_min) / (op.in_max - op.in_min);
-        float out = op.out_min + t * (op.out_max - op.out_min);
-        if (op.clamp) out = glm::clamp(out, std::min(op.out_min, op.out_max), std::max(op.out_min, op.out_max));
+        // Constant input: fold the remap away, with the kernel every evaluator runs.
+        float out = kernels::remap_value(op.value.constant, op.in_min, op.in_max, op.out_min, op.out_max, op.clamp);
         set_output(i, "value", Output{ScalarRef{out, -1}, {}});
         return;
       }
@@ -139,17 +140,18 @@ class Compiler {
     }
   }
 
-  Interface interface(size_t i) const {
+  LayerInterface interface(size_t i) const {
     const std::string& type = g_.decl(i).type;
     if (type == "interface/dielectric")
-      return DielectricInterface{scalar(i, "ior"), roughness(i), distribution(text(i, "distribution"))};
+      return DielectricInterface{scalar(i, "ior"), roughness(i), distribution(text(i, "distribution")), g_.node(i).id};
     throw std::logic_error("compile: no CPU interface for " + type);
   }
 
-  Medium medium(std::optional<size_t> i) const {
-    if (!i || g_.decl(*i).type == "medium/clear") return ClearMedium{};
+  LayerMedium medium(std::optional<size_t> i) const {
+    if (!i) return ClearMedium{};
+    if (g_.decl(*i).type == "medium/clear") return ClearMedium{g_.node(*i).id};
     if (g_.decl(*i).type == "medium/absorbing")
-      return AbsorbingMedium{scalar(*i, "thickness"), color(*i, "absorption")};
+      return AbsorbingMedium{scalar(*i, "thickness"), color(*i, "absorption"), g_.node(*i).id};
     throw std::logic_error("compile: no CPU medium for " + g_.decl(*i).type);
   }
 
@@ -158,22 +160,24 @@ class Compiler {
     const std::string& type = g_.decl(i).type;
     StackNode node;
     if (type == "layer") {
-      LayerNode layer{interface(*g_.linked(i, "interface")), medium(g_.linked(i, "medium")), -1};
+      LayerNode layer{interface(*g_.linked(i, "interface")), medium(g_.linked(i, "medium")), -1, g_.node(i).id};
       layer.base = stack_node(*g_.linked(i, "base"));
       node = layer;
     } else if (type == "mix") {
-      MixNode mix{scalar(i, "weight"), -1, -1};
+      MixNode mix{scalar(i, "weight"), -1, -1, g_.node(i).id};
       mix.a = stack_node(*g_.linked(i, "a"));
       mix.b = stack_node(*g_.linked(i, "b"));
       node = mix;
     } else if (type == "substrate/lambert") {
-      node = LambertNode{color(i, "albedo")};
+      node = LambertNode{color(i, "albedo"), g_.node(i).id};
     } else if (type == "substrate/oren_nayar") {
-      node = OrenNayarNode{color(i, "albedo"), scalar(i, "sigma")};
+      node = OrenNayarNode{color(i, "albedo"), scalar(i, "sigma"), g_.node(i).id};
     } else if (type == "substrate/conductor") {
       ConductorNode c;
+      c.node = g_.node(i).id;
       if (const Value* metal = g_.node(i).find("metal")) {
-        const Metal* m = find_metal(std::get<std::string>(*metal));
+        c.metal = std::get<std::string>(*metal);
+        const Metal* m = find_metal(c.metal);
         c.n = ColorRef{glm::vec3(float(m->n[0]), float(m->n[1]), float(m->n[2])), -1};
         c.k = ColorRef{glm::vec3(float(m->k[0]), float(m->k[1]), float(m->k[2])), -1};
       } else {

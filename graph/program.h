@@ -45,10 +45,13 @@ struct RoughnessRef {
 
 struct LinearImage;  // texels decoded to linear floats (graph/cpu/image.h)
 
+// Every operation and stack part keeps the id of the node it came from (`node`), so that back ends
+// can name their variables, uniforms and comments after the user's graph.
 struct CheckerOp {
   ColorRef color_a, color_b;
   glm::vec2 scale{8.0f};
   int color_slot = -1, value_slot = -1;
+  std::string node;
 };
 struct ImageOp {
   std::shared_ptr<const LinearImage> image;
@@ -57,12 +60,14 @@ struct ImageOp {
   float uv_rotation_deg = 0.0f;
   int wrap = 0;  // 0 repeat, 1 clamp, 2 mirror
   int color_slot = -1, value_slot = -1, alpha_slot = -1;
+  std::string node;
 };
 struct RemapOp {
   ScalarRef value;
   float in_min = 0.0f, in_max = 1.0f, out_min = 0.0f, out_max = 1.0f;
   bool clamp = true;
   int value_slot = -1;
+  std::string node;
 };
 using TextureOp = std::variant<CheckerOp, ImageOp, RemapOp>;
 
@@ -74,36 +79,46 @@ struct DielectricInterface {
   ScalarRef ior;  // absolute index of the layer below
   RoughnessRef roughness;
   Distribution distribution = Distribution::Beckmann;
+  std::string node;
 };
-using Interface = std::variant<DielectricInterface>;
+using LayerInterface = std::variant<DielectricInterface>;
 
-struct ClearMedium {};
+struct ClearMedium {
+  std::string node;  // empty when the layer names no medium
+};
 struct AbsorbingMedium {
   ScalarRef thickness;  // micrometres
   ColorRef absorption;  // per micrometre
+  std::string node;
 };
-using Medium = std::variant<ClearMedium, AbsorbingMedium>;
+using LayerMedium = std::variant<ClearMedium, AbsorbingMedium>;
 
 struct LayerNode {
-  Interface interface;
-  Medium medium;
+  LayerInterface interface;
+  LayerMedium medium;
   int base = -1;  // index into Program::stack
+  std::string node;
 };
 struct MixNode {
   ScalarRef weight;
   int a = -1, b = -1;
+  std::string node;
 };
 struct LambertNode {
   ColorRef albedo;
+  std::string node;
 };
 struct OrenNayarNode {
   ColorRef albedo;
   ScalarRef sigma;
+  std::string node;
 };
 struct ConductorNode {
   ColorRef n, k;  // absolute complex index
   RoughnessRef roughness;
   Distribution distribution = Distribution::Beckmann;
+  std::string node;
+  std::string metal;  // the named metal n and k came from, if any
 };
 using StackNode = std::variant<LayerNode, MixNode, LambertNode, OrenNayarNode, ConductorNode>;
 

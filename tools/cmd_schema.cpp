@@ -13,28 +13,6 @@ struct SchemaOptions {
   std::string out_dir;
 };
 
-// Writes through a temporary file and a rename, so that a failure never leaves half a file.
-bool write_file(const std::filesystem::path& path, const std::string& text) {
-  auto temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!(out << text) || !out.flush()) {
-      std::cerr << "lamina: cannot write " << temporary.string() << "\n";
-      std::error_code ec;
-      std::filesystem::remove(temporary, ec);
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::cerr << "lamina: cannot write " << path.string() << ": " << ec.message() << "\n";
-    return false;
-  }
-  return true;
-}
-
 int run_schema(const SchemaOptions& o) {
   std::filesystem::path dir(o.out_dir);
   std::error_code ec;

@@ -25,6 +25,7 @@ void add_schema(CLI::App& app, Runner& runner);
 void add_eval(CLI::App& app, Runner& runner);
 void add_albedo(CLI::App& app, Runner& runner);
 void add_plot(CLI::App& app, Runner& runner);
+void add_glsl(CLI::App& app, Runner& runner);
 
 // Expands directories into the *.json files under them (sorted); files stay as given.
 // Throws IoError for a path that does not exist.
@@ -35,5 +36,9 @@ std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>&
 // failed, else 0. I/O problems are printed as "lamina: ..." lines.
 int for_each_checked_file(const std::vector<std::string>& inputs,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
+
+// Writes `text` through a temporary file and a rename, so that a failure never leaves half a
+// file; on failure prints "lamina: cannot write ..." and returns false.
+bool write_file(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace lamina::cli

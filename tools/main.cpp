@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   add_eval(app, runner);
   add_albedo(app, runner);
   add_plot(app, runner);
+  add_glsl(app, runner);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -16,7 +16,7 @@ void add_material_options(CLI::App& cmd, MaterialArg& arg) {
   cmd.add_option("-m,--material", arg.material, "the material's name (may be omitted when the file has only one)");
 }
 
-int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
+int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out) {
   CheckedFile checked;
   try {
     checked = check_file(arg.file);
@@ -36,10 +36,10 @@ int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
     listed += (names.empty() ? "" : ", ") + m.name;
     names.push_back(m.name);
   }
-  size_t index = materials.size();
+  std::vector<size_t> chosen;
   if (arg.material.empty()) {
-    if (materials.size() == 1) {
-      index = 0;
+    if (materials.size() == 1 || all_when_unnamed) {
+      for (size_t i = 0; i < materials.size(); ++i) chosen.push_back(i);
     } else {
       std::cerr << format(
                        {Severity::Error, arg.file, "/materials",
@@ -50,8 +50,8 @@ int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
     }
   } else {
     for (size_t i = 0; i < materials.size(); ++i)
-      if (materials[i].name == arg.material) index = i;
-    if (index == materials.size()) {
+      if (materials[i].name == arg.material) chosen.push_back(i);
+    if (chosen.empty()) {
       std::string suggestion = closest_match(arg.material, names);
       std::string hint = (suggestion.empty() ? "" : "did you mean '" + suggestion + "'? ") + "materials: " + listed;
       std::cerr << format({Severity::Error, arg.file, "/materials", "no material named '" + arg.material + "'", hint})
@@ -59,16 +59,27 @@ int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
       return kExitInvalid;
     }
   }
-  const std::optional<Graph>& graph = checked.graphs[index];
-  if (!graph) throw std::logic_error("load_material: a valid file without a graph for " + names[index]);
+  out.clear();
+  for (size_t index : chosen) {
+    const std::optional<Graph>& graph = checked.graphs[index];
+    if (!graph) throw std::logic_error("load_programs: a valid file without a graph for " + names[index]);
+    try {
+      out.push_back(compile(*graph, arg.file));
+    } catch (const IoError& e) {
+      std::cerr << "lamina: " << e.what() << "\n";
+      return kExitIo;
+    }
+  }
+  return kExitOk;
+}
+
+int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out) {
+  std::vector<Program> programs;
+  if (int code = load_programs(arg, false, programs); code != kExitOk) return code;
   try {
-    out.emplace(compile(*graph, arg.file));
-  } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
-    return kExitIo;
+    out.emplace(std::move(programs.front()));
   } catch (const std::length_error& e) {
-    std::cerr << format({Severity::Error, arg.file, "/materials/" + std::to_string(index), e.what(),
-                         "split the material into smaller stacks"})
+    std::cerr << format({Severity::Error, arg.file, "/materials", e.what(), "split the material into smaller stacks"})
               << "\n";
     return kExitInvalid;
   }

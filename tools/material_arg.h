@@ -8,8 +8,6 @@
 #include <string_view>
 #include <vector>
 
-// compile.h first: it includes graph.h before program.h; the other order makes -Wshadow flag the
-// enumerators Interface and Medium (ValueType, NodeKind) against program.h's variant types.
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 
@@ -30,6 +28,10 @@ void add_material_options(CLI::App& cmd, MaterialArg& arg);
 //                 listed), or the material is too large for the CPU evaluator;
 //   kExitIo       the file or one of its textures cannot be read.
 int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out);
+
+// As load_material, but compiles to Programs: the named material, the only one, or with
+// `all_when_unnamed` every material of the file when no name is given.
+int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out);
 
 // Parses `count` comma-separated finite numbers ("0.3,0,1"; spaces around them are allowed).
 // On a mistake prints "lamina: OPTION: ..." on stderr and returns nothing.

@@ -68,31 +68,9 @@ struct Evaluator::LobeFrame {
 Evaluator::Evaluator(Program program) : program_(std::move(program)) {
   if (program_.slot_count > kMaxSlots || int(program_.stack.size()) > kMaxStackNodes)
     throw std::length_error("material '" + program_.name + "' is too large for the CPU evaluator");
-  std::vector<PathStep> path;
-  collect_lobes(program_.root, path, 0);
+  lobes_ = collect_lobes(program_);
   if (int(lobes_.size()) > kMaxLobes)
     throw std::length_error("material '" + program_.name + "' has too many lobes for the CPU evaluator");
-}
-
-void Evaluator::collect_lobes(int node, std::vector<PathStep>& path, int depth) {
-  const StackNode& s = program_.stack[size_t(node)];
-  if (const auto* layer = std::get_if<LayerNode>(&s)) {
-    lobes_.push_back({node, path, "interface " + std::to_string(depth)});
-    path.push_back({node, -1});
-    collect_lobes(layer->base, path, depth + 1);
-    path.pop_back();
-  } else if (const auto* mix = std::get_if<MixNode>(&s)) {
-    path.push_back({node, 0});
-    collect_lobes(mix->a, path, depth);
-    path.back().side = 1;
-    collect_lobes(mix->b, path, depth);
-    path.pop_back();
-  } else {
-    const char* kind = std::holds_alternative<LambertNode>(s)     ? "lambert"
-                       : std::holds_alternative<OrenNayarNode>(s) ? "oren_nayar"
-                                                                  : "conductor";
-    lobes_.push_back({node, path, "substrate " + std::to_string(depth) + " (" + kind + ")"});
-  }
 }
 
 void Evaluator::resolve(const ShadingContext& ctx, Resolved& r) const {
@@ -205,7 +183,7 @@ int Evaluator::weights_resolved(const Resolved& r, vec3 wo, float* weights, Lobe
     vec3 v = wo;
     float n_above = 1.0f, m_above = 0.0f, throughput = 1.0f;
     bool valid = wo.z > 0.0f;
-    for (const PathStep& step : lobe.path) {
+    for (const LobeStep& step : lobe.path) {
       const Node& n = r.nodes[size_t(step.node)];
       if (n.kind == Kind::Mix) {
         throughput *= step.side == 0 ? 1.0f - n.weight : n.weight;
@@ -284,7 +262,7 @@ float Evaluator::pdf_resolved(const Resolved& r, vec3 wi, vec3 wo) const {
     const LobeFrame& frame = frames[size_t(j)];
     vec3 w = wi;
     float jacobian = 1.0f, n_above = 1.0f;
-    for (const PathStep& step : lobe.path) {
+    for (const LobeStep& step : lobe.path) {
       const Node& n = r.nodes[size_t(step.node)];
       if (n.kind == Kind::Mix) continue;
       float eta = n.ior / n_above;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "graph/lobes.h"
 #include "graph/program.h"
 
 namespace lamina::cpu {
@@ -65,15 +66,6 @@ class Evaluator {
   struct Resolved;  // parameters at one shading point (evaluator.cpp)
 
  private:
-  struct PathStep {
-    int node;       // a LayerNode or MixNode in program_.stack
-    int side = -1;  // for a mix: 0 took a, 1 took b
-  };
-  struct Lobe {
-    int node;                    // a LayerNode (its interface) or a substrate node
-    std::vector<PathStep> path;  // from the root down to, not including, `node`
-    std::string name;
-  };
   struct LobeFrame;  // wo and indices seen in a lobe's own frame (evaluator.cpp)
 
   void resolve(const ShadingContext& ctx, Resolved& r) const;
@@ -81,7 +73,6 @@ class Evaluator {
   float pdf_resolved(const Resolved& r, glm::vec3 wi, glm::vec3 wo) const;
   int weights_resolved(const Resolved& r, glm::vec3 wo, float* weights, LobeFrame* frames) const;
   glm::vec3 eval_node(const Resolved& r, int node, glm::vec3 l, glm::vec3 v, float n_above, float m_above) const;
-  void collect_lobes(int node, std::vector<PathStep>& path, int depth);
 
   Program program_;
   std::vector<Lobe> lobes_;

@@ -1,0 +1,16 @@
+// The text of nodes/kernels/*.glsl, embedded at build time (cmake/embed_kernels.cmake), in the
+// order kernels.h includes them: the GLSL back end pastes these after its prelude.
+#pragma once
+
+#include <span>
+
+namespace lamina::glsl {
+
+struct KernelFile {
+  const char* name;  // e.g. "fresnel.glsl"
+  const char* text;
+};
+
+std::span<const KernelFile> kernel_files();
+
+}  // namespace lamina::glsl
