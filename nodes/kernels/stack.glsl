@@ -31,7 +31,7 @@ LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
   float fresnel = fresnel_dielectric(v_dot_h, eta);
-  float d = d_microfacet(distribution, h.z, m);
+  float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   l_below = refract_down(l, eta);
   v_below = refract_down(v, eta);
@@ -49,7 +49,7 @@ LAMINA_FN vec3 lamina_conductor_eval(vec3 l, vec3 v, vec3 eta, vec3 k, int distr
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
   vec3 fresnel = fresnel_conductor(v_dot_h, eta, k);
-  float d = d_microfacet(distribution, h.z, m);
+  float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   return torrance_sparrow(fresnel, d, g, l.z, v.z);
 }
@@ -82,7 +82,8 @@ LAMINA_FN float lamina_reflection_density(int distribution, float m, vec3 v, vec
   if (h.z < 0.0f) h = -h;
   float v_dot_h = abs(dot(v, h));
   if (v_dot_h <= 0.0f) return 0.0f;
-  return pdf_microfacet_normal(distribution, m, h.z) / (4.0f * v_dot_h);
+  // pdf_microfacet_normal (D cos_h) with D from h's components, as in the evaluation.
+  return d_microfacet_h(distribution, h, m) * h.z / (4.0f * v_dot_h);
 }
 
 // Reflections that would leave below the horizon are mirrored back above it, so the lobe's

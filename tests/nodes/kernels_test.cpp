@@ -694,7 +694,8 @@ TEST_CASE("kernels: the interface step carries T a t and returns the interface's
   const float vh = 0.5f * (glm::dot(v, h) + glm::dot(l, h));
   const float fr = k::fresnel_dielectric(vh, eta);
   const float g = k::g_microfacet(0, l.z, v.z, h.z, vh, m);
-  CHECK_VEC3_NEAR(f, k::torrance_sparrow(vec3(fr), k::d_microfacet(0, h.z, m), g, l.z, v.z), 1e-7f);
+  const vec3 want = k::torrance_sparrow(vec3(fr), k::d_microfacet_h(0, h, m), g, l.z, v.z);
+  CHECK_VEC3(f, double(want.x), double(want.y), double(want.z));
   CHECK_VEC3_NEAR(lb, k::refract_down(l, eta), 0.0f);
   const vec3 a = k::absorption(vec3(0.1f, 0.2f, 0.3f), 2.0f, lb.z, vb.z);
   CHECK_VEC3_NEAR(carry, (1.0f - fr) * a * ((1.0f - g) + (1.0f - fr) * g), 1e-7f);
@@ -713,4 +714,34 @@ TEST_CASE("kernels: lobe sampling stays in the upper hemisphere and its densitie
     const vec3 d = k::lamina_sample_diffuse_lobe(u.next2(), 1.5f);
     CHECK(d.z >= k::lamina_cos_critical(1.5f) - 1e-6f);
   }
+}
+
+TEST_CASE("kernels: d_microfacet_h equals d_microfacet and keeps its accuracy near the normal") {
+  // Same values as the cos_h forms where cos_h is well conditioned.
+  for (int dist = 0; dist < 3; ++dist)
+    for (float theta : {5.0f, 20.0f, 40.0f, 70.0f}) {
+      const vec3 h = direction(theta, 30.0);
+      for (float m : {0.1f, 0.3f, 0.7f}) {
+        double want = k::d_microfacet(dist, h.z, m), got = k::d_microfacet_h(dist, h, m);
+        if (want == 0.0)
+          CHECK(got < 1e-30);  // both beyond the Beckmann cut-off
+        else
+          CHECK(got == doctest::Approx(want).epsilon(2e-4).scale(0.0));
+      }
+    }
+  // A narrow lobe (m = tan 1 deg) near its peak, against double precision from the components:
+  // python3: import math; t=math.radians(0.8); m=math.tan(math.radians(1)); s2=math.sin(t)**2;
+  //   c2=math.cos(t)**2; beck=math.exp(-(s2/c2)/m**2)/(math.pi*m**2*c2*c2); a2=m*m;
+  //   ggx=a2/(math.pi*(a2*c2+s2)**2); e=2/m**2-2; blinn=(e+2)/(2*math.pi)*math.cos(t)**e
+  const vec3 h = direction(0.8, 10.0);
+  const float m = std::tan(float(kPi) / 180.0f);
+  double t = 0.8 * kPi / 180.0, md = std::tan(kPi / 180.0), s2 = std::sin(t) * std::sin(t), c2 = 1.0 - s2;
+  double beckmann = std::exp(-(s2 / c2) / (md * md)) / (kPi * md * md * c2 * c2);
+  double ggx = md * md / (kPi * std::pow(md * md * c2 + s2, 2.0));
+  double e = 2.0 / (md * md) - 2.0, blinn = (e + 2.0) / (2.0 * kPi) * std::pow(std::cos(t), e);
+  CHECK(double(k::d_microfacet_h(0, h, m)) == rel(beckmann, 2e-5));
+  CHECK(double(k::d_microfacet_h(1, h, m)) == rel(blinn, 2e-5));
+  CHECK(double(k::d_microfacet_h(2, h, m)) == rel(ggx, 2e-5));
+  CHECK(k::d_microfacet_h(0, vec3(0.6f, 0.8f, 0.0f), 0.3f) == 0.0f);
+  CHECK(k::d_microfacet_h(3, h, m) == 0.0f);
 }
