@@ -1,23 +1,38 @@
 #!/usr/bin/env bash
-# Builds the release variant and runs the evaluator benchmarks once, then prints the cost of each
-# layered material relative to a single Torrance-Sparrow lobe, all from the same run.
+# Builds the release variant and runs the benchmarks once: the CPU evaluator (lamina_bench) and
+# the generated GLSL on Mesa llvmpipe (lamina_glsl_bench). Prints the cost of each layered
+# material relative to a single Torrance-Sparrow lobe, every ratio from one run of its program.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/build.sh release >/dev/null
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-build/release/tests/bench/lamina_bench --benchmark_format=json --benchmark_min_time=0.5 >"$out"
+cpu=$(mktemp)
+gpu=$(mktemp)
+trap 'rm -f "$cpu" "$gpu"' EXIT
+build/release/tests/bench/lamina_bench --benchmark_format=json --benchmark_min_time=0.5 >"$cpu"
+build/release/tests/glsl/lamina_glsl_bench --benchmark_format=json >"$gpu" 2>/dev/null
 node -e '
-const report = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+const fs = require("fs");
+const cpu = JSON.parse(fs.readFileSync(process.argv[1], "utf8"));
 // Nanoseconds per evaluation (a batch benchmark processes many per iteration).
 const ns = {};
-for (const b of report.benchmarks) ns[b.name] = 1e9 / b.items_per_second;
+for (const b of cpu.benchmarks) ns[b.name] = 1e9 / b.items_per_second;
 const rows = [["eval", "BM_eval_"], ["eval batch", "BM_eval_batch_"], ["sample", "BM_sample_"]];
-console.log("ratio to a single Torrance-Sparrow lobe (same run):");
+console.log("CPU evaluator, ratio to a single Torrance-Sparrow lobe (same run):");
 for (const [label, prefix] of rows) {
   const base = ns[prefix + "single_lobe"];
   for (const name of ["car_paint_2_layers", "house_paint_3_layers"]) {
     const t = ns[prefix + name];
     console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ns vs ${base.toFixed(1)} ns per evaluation, ${(1e3 / t).toFixed(2)} M/s on one core)`);
   }
-}' "$out"
+}
+const gpu = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
+const ms = {};
+for (const b of gpu.benchmarks) ms[b.name.split("/")[1]] = b.real_time;
+console.log(`GLSL on llvmpipe (${gpu.context.host_name}), 1024 x 1024 sphere, ratio to a single lobe (same run):`);
+for (const [label, prefix] of [["light only", "light_"], ["sphere", "sphere_"]]) {
+  const base = ms[prefix + "single_lobe"];
+  for (const name of ["car_paint", "house_paint"]) {
+    const t = ms[prefix + name];
+    console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ms vs ${base.toFixed(1)} ms per frame)`);
+  }
+}' "$cpu" "$gpu"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build, then check and classify every bundled example.
+# The main job: install what is missing, build, then check, classify, measure, plot and compile to
+# GLSL every bundled example.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
@@ -30,3 +31,17 @@ for file in examples/materials/*.json; do
   $lamina plot "$file" -o "$plots/$(basename "$file" .json).png"
 done
 ls "$plots"
+echo
+glsl=build/glsl
+mkdir -p "$glsl"
+echo "== lamina glsl: every example as GLSL 330, 450 and ES 3.00 sphere shaders in $glsl/, checked by glslangValidator"
+for file in examples/materials/*.json; do
+  name=$(basename "$file" .json)
+  row=$(printf '%-24s' "$name")
+  for target in 330 450 es300; do
+    $lamina glsl "$file" --target "$target" --shader sphere -o "$glsl/$name.$target.frag"
+    glslangValidator -S frag "$glsl/$name.$target.frag" >/dev/null
+    row+=" $target ok"
+  done
+  echo "$row  ($(wc -l <"$glsl/$name.330.frag") lines)"
+done

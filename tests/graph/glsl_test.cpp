@@ -8,7 +8,6 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -68,6 +67,21 @@ std::string validate(const std::string& source, const fs::path& dir, const std::
   return rc == 0 ? std::string() : test::read_file(log) + "(exit " + std::to_string(rc) + ")";
 }
 
+// Joins argument lists that the generator wrapped over several lines: "f(\n    a,\n    b)" -> "f(a, b)".
+std::string join_wrapped(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if ((text[i] == '(' || text[i] == ',') && i + 1 < text.size() && text[i + 1] == '\n') {
+      char c = text[i];
+      ++i;  // the newline, then the indentation
+      while (i + 1 < text.size() && text[i + 1] == ' ') ++i;
+      if (c == ',') out += ' ';
+    }
+  }
+  return out;
+}
+
 const glsl::Target kTargets[] = {glsl::Target::Glsl330, glsl::Target::Glsl450, glsl::Target::Es300};
 
 }  // namespace
@@ -122,10 +136,12 @@ TEST_CASE("glsl: every registered node type has a GLSL emission, named after the
 
 TEST_CASE("glsl: the embedded kernels are nodes/kernels/*.glsl verbatim, in kernels.h's order") {
   std::string header = test::read_file(test::source_dir() / "nodes/kernels/kernels.h");
-  std::regex include(R"re(#include "nodes/kernels/([a-z_]+\.glsl)")re");
+  const std::string include = "#include \"nodes/kernels/";
   std::vector<std::string> order;
-  for (auto it = std::sregex_iterator(header.begin(), header.end(), include); it != std::sregex_iterator(); ++it)
-    order.push_back((*it)[1]);
+  for (size_t at = header.find(include); at != std::string::npos; at = header.find(include, at + 1)) {
+    size_t start = at + include.size();
+    order.push_back(header.substr(start, header.find('"', start) - start));
+  }
   auto files = glsl::kernel_files();
   REQUIRE(files.size() == order.size());
   for (size_t i = 0; i < files.size(); ++i) {
@@ -159,8 +175,7 @@ TEST_CASE("glsl: output is deterministic and readable") {
   }
   CHECK(longest <= 160);
   // The public functions, with declarations that may wrap over several lines joined back.
-  std::string joined = std::regex_replace(s, std::regex(R"(\(\n\s+)"), "(");
-  joined = std::regex_replace(joined, std::regex(R"(,\n\s+)"), ", ");
+  std::string joined = join_wrapped(s);
   for (const char* fn : {"vec3 lamina_patina_map_copper_eval(vec3 wi, vec3 wo, vec2 uv)",
                          "float lamina_patina_map_copper_pdf(vec3 wi, vec3 wo, vec2 uv)",
                          "vec3 lamina_patina_map_copper_sample(vec3 wo, vec2 u, float u_layer, vec2 uv, out vec3 wi, "
@@ -214,12 +229,11 @@ TEST_CASE("glsl: names stay legal GLSL whatever the ids: no double underscores, 
     for (bool uniforms : {false, true}) {
       std::string s = generate(programs, target, uniforms);
       std::string body = s.substr(s.find("// ======"));
-      std::regex double_underscore("[A-Za-z0-9]__[A-Za-z0-9]");
       // Comments quote the user's ids; code must not contain "__".
       std::istringstream lines(body);
       for (std::string line; std::getline(lines, line);) {
         std::string code = line.substr(0, line.find("//"));
-        CHECK_MESSAGE(!std::regex_search(code, double_underscore), line);
+        CHECK_MESSAGE(code.find("__") == std::string::npos, line);
       }
       CHECK(validate(s, dir.path(), std::string("odd_") + glsl::target_name(target) + (uniforms ? "_u" : "")).empty());
     }

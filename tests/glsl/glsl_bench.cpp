@@ -1,0 +1,100 @@
+// Cost of the generated layered GLSL against a single Torrance-Sparrow lobe on llvmpipe, rendered
+// at the same resolution in one run (the papers' GPU ratio was 2.3 to 4.2).
+// Run: bash tools/run_bench.sh (prints the ratios), or build/release/tests/glsl/lamina_glsl_bench.
+//
+// Each material is drawn as the --shader sphere wrapper at 1024 x 1024 in two forms: `light`, the
+// directional light alone (one eval per pixel, as the papers' renderings), and `sphere`, the
+// wrapper as shipped (the light plus 16 importance-sampled ambient directions per pixel).
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "glsl/gl_runner.h"
+#include "graph/compile.h"
+#include "graph/glsl/generator.h"
+#include "graph/glsl/glsl_text.h"
+#include "graph/load.h"
+
+namespace {
+
+using namespace lamina;
+
+constexpr int kSize = 1024;
+
+// The CPU benchmark's single lobe: the Car Paint's aluminium base without its varnish.
+const char* kSingleLobe = R"({"format": 1, "materials": [{"name": "single_lobe", "surface": "@metal", "nodes": [
+    {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0}]}]})";
+
+Program program(const std::string& name) {
+  if (name == "single_lobe") {
+    CheckedFile checked = check_text(kSingleLobe, "bench.json");
+    return compile(*checked.graphs[0], "bench.json");
+  }
+  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name + ".json";
+  CheckedFile checked = check_file(file);
+  return compile(*checked.graphs[0], file);
+}
+
+gltest::Runner& runner() {
+  static std::unique_ptr<gltest::Runner> r = [] {
+    std::string error;
+    auto made = gltest::Runner::create(gltest::Api::Desktop, &error);
+    if (!made) {
+      std::fprintf(stderr, "no GL context: %s\n", error.c_str());
+      std::exit(1);
+    }
+    return made;
+  }();
+  return *r;
+}
+
+// The sphere shader of `name` at kSize x kSize, the viewport set through a one-member block.
+gltest::Pass pass(const std::string& name, bool ambient) {
+  std::vector<Program> programs{program(name)};
+  glsl::Options options;
+  options.sphere_shader = true;
+  std::string source = glsl::generate(programs, options).source;
+  if (!ambient)
+    source =
+        glsl::replace_all(source, "const int lamina_ambient_samples = 16;", "const int lamina_ambient_samples = 0;");
+  // The harness sets uniforms through a block; the wrapper's lamina_viewport becomes a constant.
+  source = glsl::replace_all(source, "uniform vec2 lamina_viewport;",
+                             "const vec2 lamina_viewport = vec2(" + std::to_string(kSize) + ".0f);");
+  gltest::Pass p;
+  p.fragment_source = source;
+  p.width = kSize;
+  p.height = kSize;
+  return p;
+}
+
+void BM_glsl(benchmark::State& state, const std::string& name, bool ambient) {
+  gltest::Pass p = pass(name, ambient);
+  for (auto _ : state) {
+    std::string error;
+    double seconds = runner().time_pass(p, 4, &error);
+    if (seconds < 0.0) {
+      state.SkipWithError(error.c_str());
+      break;
+    }
+    state.SetIterationTime(seconds);
+  }
+  state.counters["pixels_per_second"] =
+      benchmark::Counter(double(kSize) * kSize, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+}  // namespace
+
+#define LAMINA_GLSL_BENCH(name)                          \
+  BENCHMARK_CAPTURE(BM_glsl, light_##name, #name, false) \
+      ->UseManualTime()                                  \
+      ->Iterations(8)                                    \
+      ->Unit(benchmark::kMillisecond);                   \
+  BENCHMARK_CAPTURE(BM_glsl, sphere_##name, #name, true)->UseManualTime()->Iterations(8)->Unit(benchmark::kMillisecond)
+
+LAMINA_GLSL_BENCH(single_lobe);
+LAMINA_GLSL_BENCH(car_paint);
+LAMINA_GLSL_BENCH(house_paint);
+
+BENCHMARK_MAIN();
