@@ -16,34 +16,39 @@ namespace lamina::glsl {
 
 namespace k = lamina::kernels;
 
-const char* target_name(Target target) {
-  switch (target) {
-    case Target::Glsl330: return "330";
-    case Target::Glsl450: return "450";
-    case Target::Es300: return "es300";
-  }
-  return "330";
+namespace {
+
+struct TargetInfo {
+  Target target;
+  const char* name;     // as on the command line
+  const char* version;  // the module's first line
+};
+const TargetInfo kTargetInfo[] = {{Target::Glsl330, "330", "#version 330 core"},
+                                  {Target::Glsl450, "450", "#version 450 core"},
+                                  {Target::Es300, "es300", "#version 300 es"}};
+
+const TargetInfo& info(Target target) {
+  for (const TargetInfo& t : kTargetInfo)
+    if (t.target == target) return t;
+  return kTargetInfo[0];
 }
 
+const char* version_line(Target target) { return info(target).version; }
+
+}  // namespace
+
+const char* target_name(Target target) { return info(target).name; }
+
 bool parse_target(const std::string& text, Target& target) {
-  for (Target t : {Target::Glsl330, Target::Glsl450, Target::Es300})
-    if (text == target_name(t)) {
-      target = t;
+  for (const TargetInfo& t : kTargetInfo)
+    if (text == t.name) {
+      target = t.target;
       return true;
     }
   return false;
 }
 
 namespace {
-
-const char* version_line(Target target) {
-  switch (target) {
-    case Target::Glsl330: return "#version 330 core";
-    case Target::Glsl450: return "#version 450 core";
-    case Target::Es300: return "#version 300 es";
-  }
-  return "#version 330 core";
-}
 
 const char* distribution_name(Distribution d) {
   switch (d) {
