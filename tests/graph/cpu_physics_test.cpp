@@ -847,10 +847,11 @@ dvec3 refract(const dvec3& i, const dvec3& n, double eta) {
   return eta * i - (eta * glm::dot(n, i) + std::sqrt(k)) * n;
 }
 
-// The value plus an estimate of the error float evaluation cannot avoid: a Beckmann lobe depends on
-// cos_h through exp(-tan^2/m^2) / cos^4, so a rounding error e in cos_h changes it by a factor
-// (2 / (m^2 cos^3) + 4 / cos) e; e = 2.4e-7 (four float ulps at 1) covers computing the half vector
-// in float. For m = tan(1 deg) that is 2e-3: a narrow lobe cannot be evaluated to 1e-5 in float.
+// The value plus an estimate of the error float evaluation cannot avoid: the evaluator computes
+// tan^2 = (h.x^2 + h.y^2) / h.z^2 from the half vector's components (d_microfacet_h), so relative
+// roundings e of those components change exp(-tan^2/m^2) / cos^4 by a factor of about
+// (2 tan^2 / m^2 + 4) e; e = 2.4e-7 (four float ulps) covers computing the half vector in float.
+// (From cos_h alone, 1 - cos^2 would cancel: 2e-3 for m = tan 1 deg near the peak.)
 struct Value {
   dvec3 f{0.0};
   dvec3 float_noise{0.0};
@@ -864,7 +865,8 @@ Value torrance_sparrow(const dvec3& l, const dvec3& v, double m, const std::func
   double g = std::min(1.0, std::min(2.0 * nh * v.z / vh, 2.0 * nh * l.z / vh));
   Value out;
   out.f = fresnel_at(vh) * beckmann(nh, m) * g / (4.0 * l.z * v.z);
-  out.float_noise = out.f * ((2.0 / (m * m * nh * nh * nh) + 4.0 / nh) * 2.4e-7);
+  double tan2 = (h.x * h.x + h.y * h.y) / (nh * nh);
+  out.float_noise = out.f * ((2.0 * tan2 / (m * m) + 4.0) * 2.4e-7);
   return out;
 }
 
