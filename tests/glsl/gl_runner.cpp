@@ -29,17 +29,6 @@ constexpr EGLContext kNoContext = nullptr;
 constexpr EGLSurface kNoSurface = nullptr;
 constexpr EGLConfig kNoConfig = nullptr;  // EGL_NO_CONFIG_KHR
 
-// One EGLDisplay per process, shared by the runners: eglGetPlatformDisplayEXT returns the same
-// handle on every call and eglTerminate is not reference counted, so the last runner ends it.
-struct Runner::Display {
-  EGLDisplay handle = kNoDisplay;
-  ~Display() {
-    eglMakeCurrent(handle, kNoSurface, kNoSurface, kNoContext);
-    eglTerminate(handle);
-    eglReleaseThread();
-  }
-};
-
 namespace {
 
 std::string hex(long long value) {
@@ -458,44 +447,47 @@ bool prepare(const Pass& pass, PassObjects& objects, std::string* error) {
   return gl_ok("binding the vertex array", error);
 }
 
+// The process's surfaceless EGLDisplay, initialised on first use and never terminated: the handle
+// is the same on every call and eglTerminate is not reference counted, so it would end every
+// runner's context; and it unloads Mesa's driver, whose globals are the only references to memory
+// it keeps, which LeakSanitizer then reports as leaked. Keeping it also spares each later runner
+// the driver's load (about 25 ms).
+EGLDisplay surfaceless_display(std::string* error) {
+  static std::mutex mutex;
+  static EGLDisplay display = kNoDisplay;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (display != kNoDisplay) return display;
+  // Client extensions are queried on no display; NULL means EGL_EXT_client_extensions is missing.
+  const char* client = eglQueryString(kNoDisplay, EGL_EXTENSIONS);
+  if (!has_word(client, "EGL_EXT_platform_base") || !has_word(client, "EGL_MESA_platform_surfaceless")) {
+    *error = "EGL lacks EGL_EXT_platform_base or EGL_MESA_platform_surfaceless (client extensions: " +
+             std::string(client ? client : "none") + ")";
+    return nullptr;
+  }
+  const auto get_platform_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  // The surfaceless platform needs no native display: EGL_DEFAULT_DISPLAY, i.e. null.
+  const EGLDisplay handle =
+      get_platform_display ? get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, nullptr, nullptr) : kNoDisplay;
+  if (handle == kNoDisplay) {
+    *error = egl_failure("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
+    return nullptr;
+  }
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(handle, &major, &minor)) {
+    *error = egl_failure("eglInitialize");
+    return nullptr;
+  }
+  display = handle;
+  return display;
+}
+
 }  // namespace
 
 std::unique_ptr<Runner> Runner::create(Api api, std::string* error) {
-  static std::mutex mutex;
-  static std::weak_ptr<Display> shared;
-  std::shared_ptr<Display> display;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    display = shared.lock();
-    if (!display) {
-      // Client extensions are queried on no display; NULL means EGL_EXT_client_extensions is missing.
-      const char* client = eglQueryString(kNoDisplay, EGL_EXTENSIONS);
-      if (!has_word(client, "EGL_EXT_platform_base") || !has_word(client, "EGL_MESA_platform_surfaceless")) {
-        *error = "EGL lacks EGL_EXT_platform_base or EGL_MESA_platform_surfaceless (client extensions: " +
-                 std::string(client ? client : "none") + ")";
-        return nullptr;
-      }
-      const auto get_platform_display =
-          reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-      // The surfaceless platform needs no native display: EGL_DEFAULT_DISPLAY, i.e. null.
-      const EGLDisplay handle =
-          get_platform_display ? get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, nullptr, nullptr) : kNoDisplay;
-      if (handle == kNoDisplay) {
-        *error = egl_failure("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
-        return nullptr;
-      }
-      EGLint major = 0, minor = 0;
-      if (!eglInitialize(handle, &major, &minor)) {
-        *error = egl_failure("eglInitialize");
-        return nullptr;
-      }
-      display = std::make_shared<Display>();
-      display->handle = handle;
-      shared = display;
-    }
-  }
-
-  const char* extensions = eglQueryString(display->handle, EGL_EXTENSIONS);
+  const EGLDisplay display = surfaceless_display(error);
+  if (display == kNoDisplay) return nullptr;
+  const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
   for (const char* needed : {"EGL_KHR_create_context", "EGL_KHR_no_config_context", "EGL_KHR_surfaceless_context"})
     if (!has_word(extensions, needed)) {
       *error = std::string("the EGL display lacks ") + needed;
@@ -512,7 +504,7 @@ std::unique_ptr<Runner> Runner::create(Api api, std::string* error) {
   // eglChooseConfig finds no configs on the surfaceless platform; a context without a config
   // (EGL_KHR_no_config_context) renders into framebuffer objects only, which is all we need.
   const EGLContext context =
-      eglCreateContext(display->handle, kNoConfig, kNoContext, api == Api::Es ? es_attributes : desktop_attributes);
+      eglCreateContext(display, kNoConfig, kNoContext, api == Api::Es ? es_attributes : desktop_attributes);
   if (context == kNoContext) {
     *error = egl_failure(api == Api::Es ? "eglCreateContext(OpenGL ES 3)" : "eglCreateContext(OpenGL 4.5 core)");
     return nullptr;
@@ -536,20 +528,19 @@ std::unique_ptr<Runner> Runner::create(Api api, std::string* error) {
   return runner;
 }
 
-Runner::Runner(Api api, std::shared_ptr<Display> display, void* context)
-    : api_(api), display_(std::move(display)), context_(context) {}
+Runner::Runner(Api api, void* display, void* context) : api_(api), display_(display), context_(context) {}
 
 Runner::~Runner() {
   eglBindAPI(api_ == Api::Es ? EGL_OPENGL_ES_API : EGL_OPENGL_API);
-  if (eglGetCurrentContext() == context_) eglMakeCurrent(display_->handle, kNoSurface, kNoSurface, kNoContext);
-  eglDestroyContext(display_->handle, context_);
+  if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, kNoSurface, kNoSurface, kNoContext);
+  eglDestroyContext(display_, context_);
 }
 
 // EGL keeps one current context per thread for OpenGL and OpenGL ES together, found through the
 // bound API; binding ours first lets a desktop and an ES runner take turns on one thread.
 bool Runner::make_current(std::string* error) const {
   if (!eglBindAPI(api_ == Api::Es ? EGL_OPENGL_ES_API : EGL_OPENGL_API) ||
-      !eglMakeCurrent(display_->handle, kNoSurface, kNoSurface, context_)) {
+      !eglMakeCurrent(display_, kNoSurface, kNoSurface, context_)) {
     *error = egl_failure("eglMakeCurrent");
     return false;
   }

@@ -71,13 +71,12 @@ class Runner {
   double time_pass(const Pass& pass, int frames, std::string* error);
 
  private:
-  struct Display;
-  Runner(Api api, std::shared_ptr<Display> display, void* context);
+  Runner(Api api, void* display, void* context);
   bool make_current(std::string* error) const;
 
   Api api_;
-  std::shared_ptr<Display> display_;  // shared: eglTerminate would destroy every runner's context
-  void* context_;                     // EGLContext
+  void* display_;  // EGLDisplay, shared by all runners for the life of the process
+  void* context_;  // EGLContext
   std::string renderer_, version_;
 };
 
