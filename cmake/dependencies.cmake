@@ -3,6 +3,8 @@ find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(OpenImageIO REQUIRED)
 find_package(glm REQUIRED)
+# A shared library in Debian: link TinyGLTF::TinyGLTF and never define TINYGLTF_IMPLEMENTATION.
+find_package(TinyGLTF REQUIRED)
 
 # Debian's OpenImageIO target lists /usr/include/opencv4, which exists only with libopencv-dev;
 # CMake refuses non-existent include paths, so keep only the ones that exist.

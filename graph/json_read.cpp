@@ -3,15 +3,13 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "graph/json_values.h"
 #include "graph/number_text.h"
 
 namespace lamina {
-
-using Json = nlohmann::ordered_json;
 
 bool is_identifier(std::string_view text) {
   if (text.empty()) return false;
@@ -48,89 +46,6 @@ std::string read_text_file(const std::filesystem::path& path) {
 
 namespace {
 
-// Follows the parser through the document so that a syntax error and a duplicate key can be
-// reported with the JSON pointer of where they happen (nlohmann only gives a byte offset).
-class PathTracker {
- public:
-  explicit PathTracker(std::vector<std::string>& duplicates) : duplicates_(duplicates) {}
-
-  bool on_event(int depth, Json::parse_event_t event, const Json& parsed) {
-    (void)depth;
-    switch (event) {
-      case Json::parse_event_t::object_start: stack_.push_back(Frame{false, 0, {}, false, {}}); break;
-      case Json::parse_event_t::array_start: stack_.push_back(Frame{true, 0, {}, false, {}}); break;
-      case Json::parse_event_t::key: {
-        auto& top = stack_.back();
-        top.key = parsed.get<std::string>();
-        top.has_key = true;
-        if (!top.keys.insert(top.key).second) duplicates_.push_back(pointer());
-        break;
-      }
-      case Json::parse_event_t::object_end:
-      case Json::parse_event_t::array_end:
-        stack_.pop_back();
-        finish_value();
-        break;
-      case Json::parse_event_t::value: finish_value(); break;
-    }
-    return true;
-  }
-
-  std::string pointer() const {
-    std::string out;
-    for (const auto& f : stack_) {
-      if (f.array)
-        out = pointer_append(out, f.index);
-      else if (f.has_key)
-        out = pointer_append(out, f.key);
-    }
-    return out;
-  }
-
- private:
-  struct Frame {
-    bool array;
-    size_t index = 0;
-    std::string key;
-    bool has_key = false;
-    std::set<std::string> keys;
-  };
-  void finish_value() {
-    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
-  }
-  std::vector<Frame> stack_;
-  std::vector<std::string>& duplicates_;
-};
-
-void line_and_column(std::string_view text, size_t byte, size_t& line, size_t& column) {
-  line = 1;
-  column = 1;
-  size_t end = std::min(byte, text.size());
-  for (size_t i = 0; i + 1 < end; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-}
-
-// nlohmann's messages start with "[json.exception...] parse error at line L, column C: ".
-std::string syntax_reason(const std::string& what) {
-  auto at = what.find(": ");
-  return at == std::string::npos ? what : what.substr(at + 2);
-}
-
-std::string json_kind(const Json& j) {
-  if (j.is_null()) return "null";
-  if (j.is_boolean()) return "a boolean";
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "a string";
-  if (j.is_array()) return "an array";
-  return "an object";
-}
-
 class Reader {
  public:
   Reader(const std::string& file, Diagnostics& diagnostics, const NodeRegistry& registry)
@@ -139,36 +54,9 @@ class Reader {
   Document read(std::string_view text) {
     Document doc;
     doc.path = file_;
-    std::vector<std::string> duplicates;
-    PathTracker tracker(duplicates);
-    Json root;
-    try {
-      root = Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
-        return tracker.on_event(depth, event, parsed);
-      });
-    } catch (const Json::parse_error& e) {
-      if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-        error("", "the file is empty", "a material file is a JSON object with \"format\" and \"materials\"");
-        return doc;
-      }
-      size_t line = 0, column = 0;
-      line_and_column(text, e.byte, line, column);
-      bool at_end = e.byte >= text.size();
-      error(tracker.pointer(),
-            "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " +
-                syntax_reason(e.what()),
-            at_end ? "the file ends early: is it truncated, or is a bracket left open?"
-                   : "NaN, Infinity, comments and trailing commas are not JSON");
-      return doc;
-    } catch (const Json::out_of_range& e) {
-      // nlohmann refuses numbers beyond the double range (error 406) rather than returning inf.
-      error(tracker.pointer(), "number is not finite: it overflows the range of a double (about 1.8e308)",
-            "write a finite number");
-      return doc;
-    }
-    for (const auto& pointer : duplicates)
-      error(pointer, "duplicate key: JSON keeps only one of the two values", "remove one of them");
-
+    auto parsed = parse_json(text, file_, diag_, "a material file is a JSON object with \"format\" and \"materials\"");
+    if (!parsed) return doc;
+    const Json& root = *parsed;
     if (!root.is_object()) {
       error("", "expected an object with \"format\" and \"materials\", found " + json_kind(root));
       return doc;
@@ -212,12 +100,7 @@ class Reader {
   }
 
   void check_keys(const Json& object, const std::string& pointer, const std::vector<std::string>& known) {
-    for (const auto& [key, value] : object.items()) {
-      if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-      std::string suggestion = closest_match(key, known);
-      error(pointer_append(pointer, key), "unknown key \"" + key + "\"",
-            suggestion.empty() ? "expected " + join_alternatives(known) : "did you mean \"" + suggestion + "\"?");
-    }
+    check_known_keys(object, file_, pointer, known, diag_);
   }
 
   void read_format(const Json& root, Document& doc) {
@@ -314,10 +197,7 @@ class Reader {
     return m;
   }
 
-  static std::string describe(const Json& j) {
-    if (j.is_string()) return "\"" + j.get<std::string>() + "\"";
-    return json_kind(j);
-  }
+  static std::string describe(const Json& j) { return json_describe(j); }
 
   Node read_node(const Json& j, const std::string& pointer) {
     Node n;

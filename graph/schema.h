@@ -9,6 +9,8 @@
 namespace lamina {
 
 std::string material_schema(const NodeRegistry& registry = NodeRegistry::builtin());
+// The JSON Schema of scene files, from the scene field declarations (graph/scene/scene_fields.h).
+std::string scene_schema();
 std::string node_reference_markdown(const NodeRegistry& registry = NodeRegistry::builtin());
 // One node type's reference as plain text for `lamina nodes TYPE`.
 std::string node_reference_text(const NodeDecl& decl);

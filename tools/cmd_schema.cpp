@@ -1,4 +1,4 @@
-// lamina schema -o DIR: writes the generated JSON Schema and node reference.
+// lamina schema -o DIR: writes the generated JSON Schemas (materials, scenes) and node reference.
 #include <fstream>
 #include <iostream>
 
@@ -22,8 +22,10 @@ int run_schema(const SchemaOptions& o) {
     return kExitIo;
   }
   if (!write_file(dir / "material.schema.json", material_schema())) return kExitIo;
+  if (!write_file(dir / "scene.schema.json", scene_schema())) return kExitIo;
   if (!write_file(dir / "nodes.md", node_reference_markdown())) return kExitIo;
-  std::cout << "wrote " << (dir / "material.schema.json").string() << " and " << (dir / "nodes.md").string() << "\n";
+  std::cout << "wrote " << (dir / "material.schema.json").string() << ", " << (dir / "scene.schema.json").string()
+            << " and " << (dir / "nodes.md").string() << "\n";
   return kExitOk;
 }
 
@@ -31,7 +33,8 @@ int run_schema(const SchemaOptions& o) {
 
 void add_schema(CLI::App& app, Runner& runner) {
   auto o = std::make_shared<SchemaOptions>();
-  auto* cmd = app.add_subcommand("schema", "Write the material JSON Schema and the node reference to a directory");
+  auto* cmd =
+      app.add_subcommand("schema", "Write the material and scene JSON Schemas and the node reference to a directory");
   cmd->add_option("-o,--output", o->out_dir, "output directory (created if missing)")->required();
   cmd->callback([o, &runner] { runner = [o] { return run_schema(*o); }; });
 }

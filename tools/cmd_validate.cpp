@@ -1,8 +1,9 @@
-// lamina validate FILE|DIR...: check material files and print every problem.
+// lamina validate FILE|DIR...: check material and scene files and print every problem.
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "graph/load.h"
+#include "graph/scene/scene.h"
 #include "tools/commands.h"
 
 namespace lamina::cli {
@@ -24,31 +25,74 @@ nlohmann::json to_json(const Diagnostic& d) {
           {"hint", d.hint}};
 }
 
+std::string plural(size_t n, const std::string& word) { return std::to_string(n) + " " + word + (n == 1 ? "" : "s"); }
+
+// One checked input: a material file or a scene (with its material files' problems).
+struct Checked {
+  Diagnostics diagnostics;
+  std::string summary;  // what the file holds, for the "ok" line
+  size_t materials = 0;
+};
+
+Checked check_input(const std::filesystem::path& file) {
+  std::string text = read_text_file(file);
+  Checked out;
+  if (looks_like_scene(text)) {
+    Scene scene = read_scene(text, file.string(), out.diagnostics);
+    size_t materials = 0;
+    for (const auto& f : scene.material_files) materials += f.document.materials.size();
+    out.summary = "scene: " + plural(scene.objects.size(), "object") + ", " + plural(materials, "material") + ", " +
+                  plural(scene.lights.size(), "light") + ", " + plural(scene.cameras.size(), "camera");
+    return out;
+  }
+  CheckedFile checked = check_text(text, file.string());
+  out.diagnostics = std::move(checked.diagnostics);
+  out.materials = checked.document.materials.size();
+  out.summary = plural(out.materials, "material");
+  return out;
+}
+
 int run_validate(const ValidateOptions& o) {
+  std::vector<std::filesystem::path> inputs;
+  try {
+    inputs = expand_inputs(o.inputs);
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  }
+  int code = kExitOk;
   size_t files = 0, valid = 0, materials = 0, warnings = 0;
   nlohmann::json report = nlohmann::json::array();
-  int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path& file, CheckedFile& checked) {
+  for (const auto& file : inputs) {
+    Checked checked;
+    try {
+      checked = check_input(file);
+    } catch (const IoError& e) {
+      std::cerr << "lamina: " << e.what() << "\n";
+      code = kExitIo;
+      continue;
+    }
     ++files;
-    bool file_ok = checked.ok() && !(o.werror && !checked.diagnostics.warnings().empty());
-    warnings += checked.diagnostics.warnings().size();
+    const Diagnostics& d = checked.diagnostics;
+    bool file_ok = d.ok() && !(o.werror && !d.warnings().empty());
+    warnings += d.warnings().size();
     if (o.json) {
       nlohmann::json entry{{"file", file.string()}, {"valid", file_ok}, {"diagnostics", nlohmann::json::array()}};
-      for (const auto& d : checked.diagnostics.errors()) entry["diagnostics"].push_back(to_json(d));
-      for (const auto& d : checked.diagnostics.warnings()) entry["diagnostics"].push_back(to_json(d));
+      for (const auto& e : d.errors()) entry["diagnostics"].push_back(to_json(e));
+      for (const auto& w : d.warnings()) entry["diagnostics"].push_back(to_json(w));
       report.push_back(entry);
     } else {
-      for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
-      for (const auto& d : checked.diagnostics.warnings()) std::cerr << format(d) << "\n";
-      if (file_ok && !o.quiet)
-        std::cout << file.string() << ": ok (" << checked.document.materials.size() << " material"
-                  << (checked.document.materials.size() == 1 ? "" : "s") << ")\n";
+      for (const auto& e : d.errors()) std::cerr << format(e) << "\n";
+      for (const auto& w : d.warnings()) std::cerr << format(w) << "\n";
+      if (file_ok && !o.quiet) std::cout << file.string() << ": ok (" << checked.summary << ")\n";
     }
     if (file_ok) {
       ++valid;
-      materials += checked.document.materials.size();
+      materials += checked.materials;
+    } else if (code == kExitOk) {
+      code = kExitInvalid;
     }
-    return file_ok;
-  });
+  }
   if (code == kExitIo && files == 0) return code;
   if (o.json) {
     std::cout << report.dump(2) << "\n";
@@ -64,8 +108,8 @@ int run_validate(const ValidateOptions& o) {
 
 void add_validate(CLI::App& app, Runner& runner) {
   auto o = std::make_shared<ValidateOptions>();
-  auto* cmd = app.add_subcommand("validate", "Check material files; exit 0 valid, 2 invalid, 1 I/O error");
-  cmd->add_option("inputs", o->inputs, "material files, or directories searched for *.json")->required();
+  auto* cmd = app.add_subcommand("validate", "Check material and scene files; exit 0 valid, 2 invalid, 1 I/O error");
+  cmd->add_option("inputs", o->inputs, "material or scene files, or directories searched for *.json")->required();
   cmd->add_flag("--json", o->json, "print a JSON report instead of 'file:pointer: message' lines");
   cmd->add_flag("-q,--quiet", o->quiet, "print only problems");
   cmd->add_flag("--warnings-as-errors", o->werror, "treat warnings (unused nodes, class mismatch) as errors");

@@ -49,3 +49,14 @@ TEST_CASE("the node reference lists every parameter with its unit and range") {
   CHECK(text.find("ior: float or link, 1.0 <= ior <= 4.0, required") != std::string::npos);
   CHECK(text.find("distribution: beckmann, blinn or ggx, default \"beckmann\"") != std::string::npos);
 }
+
+TEST_CASE("the committed scene schema is exactly what lamina schema generates, and forbids unknown keys") {
+  // Regenerate with: build/release/lamina schema -o schema
+  CHECK(test::read_file(test::source_dir() / "schema/scene.schema.json") == scene_schema());
+  auto schema = nlohmann::json::parse(scene_schema());
+  CHECK(schema["additionalProperties"] == false);
+  for (const char* def : {"camera", "light_point", "light_spot", "object_sphere", "object_mesh", "transform"})
+    CHECK(schema["$defs"][def]["additionalProperties"] == false);
+  CHECK(schema["$defs"]["light_spot"]["properties"]["outer_cone"]["maximum"] == 90.0);
+  CHECK(schema["$defs"]["object_torus"]["properties"]["segments"]["type"] == "integer");
+}

@@ -1,12 +1,14 @@
-// Checks the generated JSON Schema (schema/material.schema.json) with ajv, independently of the
-// C++ checker:
+// Checks the generated JSON Schemas (schema/material.schema.json, schema/scene.schema.json) with
+// ajv, independently of the C++ checker:
 //   - the schema must compile with ajv's draft 2020-12 build in strict mode;
 //   - every examples/materials/*.json must be valid;
 //   - every case of tests/data/bad/cases.json must be accepted or rejected as its "schema" field
 //     says ("reject": the schema sees the mistake; "accept": only `lamina validate` can).
 //     A file that JSON.parse refuses counts as rejected.
+//   - the same for scenes: schema/scene.schema.json compiles, examples/scenes/*.json are valid,
+//     tests/data/bad_scenes/cases.json says which broken scenes the schema must reject.
 // Usage: node tests/schema/ajv_check.mjs <repo_root> [--schema FILE]
-// (--schema checks another schema file instead of <repo_root>/schema/material.schema.json.)
+// (--schema checks another material schema file instead of <repo_root>/schema/material.schema.json.)
 // Prints one PASS/FAIL line per file, then "N passed, M failed"; exits 1 if M > 0, else 0.
 import fs from "node:fs";
 import path from "node:path";
@@ -153,6 +155,81 @@ if (fs.existsSync(badDir)) {
   for (const f of fs.readdirSync(badDir).sort()) {
     if (f.endsWith(".json") && f !== "cases.json" && !listed.has(f))
       fail(rel(path.join(badDir, f)), "not listed in cases.json");
+  }
+}
+
+// --- scenes: the same checks against the scene schema -----------------------------------------
+function compileSchema(file) {
+  let parsed;
+  try {
+    parsed = JSON.parse(fs.readFileSync(file, "utf8"));
+  } catch (e) {
+    fail(rel(file), `cannot read the schema: ${e.message}`);
+    return null;
+  }
+  const sceneAjv = new Ajv2020({ strict: true, allErrors: true });
+  try {
+    const compiled = sceneAjv.compile(parsed);
+    pass(rel(file), "compiles with ajv (draft 2020-12, strict)");
+    return compiled;
+  } catch (e) {
+    fail(rel(file), `does not compile with ajv (draft 2020-12, strict): ${e.message}`);
+    return null;
+  }
+}
+
+function checkWith(compiled, file) {
+  let doc;
+  try {
+    doc = JSON.parse(fs.readFileSync(file, "utf8"));
+  } catch (e) {
+    return { outcome: "reject", detail: `JSON.parse: ${e.message}` };
+  }
+  if (compiled(doc)) return { outcome: "accept", detail: "" };
+  return { outcome: "reject", detail: errorText(compiled.errors[0]) };
+}
+
+const sceneSchema = compileSchema(path.join(root, "schema", "scene.schema.json"));
+if (sceneSchema) {
+  const scenesDir = path.join(root, "examples", "scenes");
+  const scenes = fs.existsSync(scenesDir) ? fs.readdirSync(scenesDir).filter((f) => f.endsWith(".json")).sort() : [];
+  if (scenes.length === 0) fail(rel(scenesDir), "no example scene files found");
+  for (const f of scenes) {
+    const file = path.join(scenesDir, f);
+    const { outcome, detail } = checkWith(sceneSchema, file);
+    if (outcome === "accept") pass(rel(file), "valid");
+    else fail(rel(file), `expected valid, rejected: ${detail}`);
+  }
+  const badScenes = path.join(root, "tests", "data", "bad_scenes");
+  const sceneManifest = path.join(badScenes, "cases.json");
+  let sceneCases = [];
+  try {
+    sceneCases = JSON.parse(fs.readFileSync(sceneManifest, "utf8"));
+    if (!Array.isArray(sceneCases)) throw new Error("not a JSON array");
+  } catch (e) {
+    fail(rel(sceneManifest), `cannot read the case list: ${e.message}`);
+    sceneCases = [];
+  }
+  const listedScenes = new Set();
+  for (const [i, c] of sceneCases.entries()) {
+    if (!c || typeof c.file !== "string" || !["accept", "reject"].includes(c.schema)) {
+      fail(`${rel(sceneManifest)} [${i}]`, `needs "file" and "schema": "accept" or "reject", found ${JSON.stringify(c)}`);
+      continue;
+    }
+    listedScenes.add(c.file);
+    const file = path.join(badScenes, c.file);
+    if (!fs.existsSync(file)) {
+      fail(rel(file), "listed in cases.json but missing");
+      continue;
+    }
+    const { outcome, detail } = checkWith(sceneSchema, file);
+    const said = outcome === "accept" ? "accepted" : `rejected: ${detail}`;
+    if (outcome === c.schema) pass(rel(file), said);
+    else fail(rel(file), `expected the schema to ${c.schema}, ${said}`);
+  }
+  for (const f of fs.readdirSync(badScenes).sort()) {
+    if (f.endsWith(".json") && f !== "cases.json" && !listedScenes.has(f))
+      fail(rel(path.join(badScenes, f)), "not listed in cases.json");
   }
 }
 finish();

@@ -88,6 +88,27 @@ TEST_CASE("lamina schema writes the generated schema and reference") {
   CHECK(r.exit_code == 0);
   CHECK(test::read_file(dir.path() / "out/material.schema.json") == material_schema());
   CHECK(test::read_file(dir.path() / "out/nodes.md") == node_reference_markdown());
+  CHECK(test::read_file(dir.path() / "out/scene.schema.json") == scene_schema());
+}
+
+TEST_CASE("lamina validate checks a scene and its material files and prints a one-line summary") {
+  auto r = test::run_cli("validate examples/scenes/showcase.json", test::source_dir());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.find("examples/scenes/showcase.json: ok (scene: 18 objects, 17 materials, 2 lights, 1 camera)") !=
+        std::string::npos);
+}
+
+TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {
+  auto scene = test::run_cli("validate tests/data/bad_scenes/radius_zero.json", test::source_dir());
+  CHECK(scene.exit_code == 2);
+  CHECK(scene.err.find("tests/data/bad_scenes/radius_zero.json:/objects/0/radius: radius = 0.0 is out of range") !=
+        std::string::npos);
+  CHECK(scene.out.find("0 of 1 file valid") != std::string::npos);
+  auto material = test::run_cli("validate tests/data/bad_scenes/broken_material_file.json", test::source_dir());
+  CHECK(material.exit_code == 2);
+  CHECK(material.err.find("tests/data/bad/ior_below_one.json:/materials/0/nodes/1/ior: ") != std::string::npos);
 }
 
 TEST_CASE("every command has --help, the tool has --version, and a bad command line exits 2") {

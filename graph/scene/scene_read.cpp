@@ -1,0 +1,534 @@
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "graph/json_values.h"
+#include "graph/load.h"
+#include "graph/number_text.h"
+#include "graph/scene/scene.h"
+#include "graph/scene/scene_fields.h"
+
+namespace lamina {
+
+namespace {
+
+// The values of one JSON object that passed their field's checks, by field name.
+struct FieldValues {
+  std::map<std::string, std::vector<double>> numbers;
+  std::map<std::string, std::string> texts;
+
+  bool has(const std::string& name) const { return numbers.count(name) || texts.count(name); }
+  double number(const std::string& name, double fallback) const {
+    auto it = numbers.find(name);
+    return it == numbers.end() ? fallback : it->second[0];
+  }
+  std::optional<double> optional_number(const std::string& name) const {
+    auto it = numbers.find(name);
+    if (it == numbers.end()) return std::nullopt;
+    return it->second[0];
+  }
+  glm::dvec2 vec2(const std::string& name, glm::dvec2 fallback) const {
+    auto it = numbers.find(name);
+    return it == numbers.end() ? fallback : glm::dvec2(it->second[0], it->second[1]);
+  }
+  glm::dvec3 vec3(const std::string& name, glm::dvec3 fallback) const {
+    auto it = numbers.find(name);
+    return it == numbers.end() ? fallback : glm::dvec3(it->second[0], it->second[1], it->second[2]);
+  }
+  std::string text(const std::string& name) const {
+    auto it = texts.find(name);
+    return it == texts.end() ? std::string() : it->second;
+  }
+};
+
+std::string single_quoted(const std::string& s) { return "'" + s + "'"; }
+
+bool has_extension(const std::filesystem::path& path, std::initializer_list<const char*> extensions) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; });
+}
+
+class SceneReader {
+ public:
+  SceneReader(const std::string& file, Diagnostics& diagnostics)
+      : file_(file), dir_(std::filesystem::path(file).parent_path()), diag_(diagnostics) {}
+
+  Scene read(std::string_view text) {
+    Scene scene;
+    scene.path = file_;
+    auto parsed =
+        parse_json(text, file_, diag_, "a scene file is a JSON object with \"format\", \"materials\" and \"objects\"");
+    if (!parsed) return scene;
+    const Json& root = *parsed;
+    if (!root.is_object()) {
+      error("", "expected an object with \"format\", \"materials\" and \"objects\", found " + json_kind(root));
+      return scene;
+    }
+    check_known_keys(root, file_, "", {"$schema", "format", "materials", "cameras", "lights", "objects"}, diag_);
+    if (auto it = root.find("$schema"); it != root.end()) {
+      if (it->is_string())
+        scene.schema = it->get<std::string>();
+      else
+        error("/$schema", "expected a string (the schema's path or URI), found " + json_kind(*it));
+    }
+    read_format(root);
+    read_materials(root, scene);
+    for_each_element(root, "cameras", "camera", false, [&](const Json& j, const std::string& p) {
+      if (auto c = read_camera(j, p)) scene.cameras.push_back(std::move(*c));
+    });
+    for_each_element(root, "lights", "light", false, [&](const Json& j, const std::string& p) {
+      if (auto l = read_light(j, p)) scene.lights.push_back(std::move(*l));
+    });
+    std::vector<std::string> object_pointers;
+    for_each_element(root, "objects", "object", true, [&](const Json& j, const std::string& p) {
+      if (auto o = read_object(j, p)) {
+        scene.objects.push_back(std::move(*o));
+        object_pointers.push_back(p);
+      }
+    });
+    check_material_names(scene, object_pointers);
+    return scene;
+  }
+
+ private:
+  void error(const std::string& pointer, std::string message, std::string hint = {}) {
+    diag_.error(file_, pointer, std::move(message), std::move(hint));
+  }
+
+  std::filesystem::path resolve(const std::string& written) const { return (dir_ / written).lexically_normal(); }
+
+  static bool is_file(const std::filesystem::path& path) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+  }
+
+  void read_format(const Json& root) {
+    auto it = root.find("format");
+    if (it == root.end()) {
+      error("", "missing \"format\"", "add \"format\": " + std::to_string(kSceneFormatVersion));
+    } else if (!it->is_number()) {
+      error("/format", "expected the format version number, found " + json_kind(*it),
+            "write \"format\": " + std::to_string(kSceneFormatVersion));
+    } else if (it->get<double>() != kSceneFormatVersion) {
+      error("/format", "unsupported format " + number_text(it->get<double>()) + ": this lamina reads scene format " +
+                           std::to_string(kSceneFormatVersion));
+    }
+  }
+
+  // Calls `visit` on each element of the array root[key]; reports a missing (when required),
+  // non-array or empty (when required) value, and names used twice within the array.
+  template <class Visit>
+  void for_each_element(const Json& root, const std::string& key, const std::string& what, bool required, Visit visit) {
+    std::string pointer = "/" + key;
+    auto it = root.find(key);
+    if (it == root.end()) {
+      if (required) error("", "missing \"" + key + "\"", "add \"" + key + "\": [ { \"name\": ..., ... } ]");
+      return;
+    }
+    if (!it->is_array()) {
+      error(pointer, "expected an array of " + what + "s, found " + json_kind(*it));
+      return;
+    }
+    if (required && it->empty()) error(pointer, "the scene has no " + what, "add at least one " + what);
+    std::map<std::string, size_t> seen;
+    for (size_t i = 0; i < it->size(); ++i) {
+      const Json& element = (*it)[i];
+      std::string at = pointer_append(pointer, i);
+      if (!element.is_object()) {
+        error(at, "expected " + what + " object, found " + json_kind(element));
+        continue;
+      }
+      if (auto name = element.find("name"); name != element.end() && name->is_string()) {
+        auto [first, inserted] = seen.emplace(name->get<std::string>(), i);
+        if (!inserted)
+          error(at + "/name",
+                "duplicate " + what + " name " + single_quoted(first->first) + " (also " +
+                    pointer_append(pointer, first->second) + ")",
+                "names identify " + what + "s: make them unique");
+      }
+      visit(element, at);
+    }
+  }
+
+  // Checks keys, types, ranges and required fields of `j` against `fields`; returns whether all
+  // passed. Nested objects (the transform) are left to the caller.
+  bool read_fields(const Json& j, const std::string& pointer, const std::vector<SceneField>& fields,
+                   const std::string& owner, FieldValues& out) {
+    size_t errors_before = diag_.errors().size();
+    check_known_keys(j, file_, pointer, field_names(fields), diag_);
+    for (const auto& f : fields) {
+      auto it = j.find(f.name);
+      if (it == j.end()) {
+        if (f.required) error(pointer, "missing \"" + f.name + "\" of " + owner, f.doc);
+        continue;
+      }
+      read_field(f, *it, pointer_append(pointer, f.name), out);
+    }
+    return diag_.errors().size() == errors_before;
+  }
+
+  bool check_number(const SceneField& f, double v, const std::string& pointer, const std::string& label) {
+    if (!std::isfinite(v)) {
+      error(pointer, label + " is not a finite number", "JSON numbers beyond 1.8e308 overflow to infinity");
+      return false;
+    }
+    bool below = f.lo_open ? !(v > f.lo) : v < f.lo;
+    bool above = f.hi_open ? !(v < f.hi) : v > f.hi;
+    if (below || above || (f.nonzero && v == 0.0)) {
+      error(pointer, label + " = " + number_text(v) + " is out of range: expected " + f.range_text(label), f.doc);
+      return false;
+    }
+    return true;
+  }
+
+  void read_field(const SceneField& f, const Json& j, const std::string& pointer, FieldValues& out) {
+    auto expected = [&](const std::string& what) {
+      error(pointer, "expected " + what + ", found " + json_describe(j), f.doc);
+    };
+    switch (f.type) {
+      case SceneFieldType::Number:
+      case SceneFieldType::Integer: {
+        if (!j.is_number()) return expected(f.type == SceneFieldType::Integer ? "a whole number" : "a number");
+        double v = j.get<double>();
+        if (f.type == SceneFieldType::Integer && v != std::floor(v))
+          return error(pointer, f.name + " = " + number_text(v) + " is not a whole number", f.doc);
+        if (check_number(f, v, pointer, f.name)) out.numbers[f.name] = {v};
+        return;
+      }
+      case SceneFieldType::Vec2:
+      case SceneFieldType::Vec3:
+      case SceneFieldType::Color:
+      case SceneFieldType::Quaternion: {
+        size_t size = f.components();
+        std::string shape = f.type == SceneFieldType::Color        ? "an RGB colour [r, g, b]"
+                            : f.type == SceneFieldType::Quaternion ? "a quaternion [x, y, z, w]"
+                            : size == 3                            ? "an array [x, y, z]"
+                                                                   : "an array of 2 numbers";
+        if (!j.is_array()) return expected(shape);
+        if (j.size() != size)
+          return error(pointer,
+                       "expected " + shape + " of " + std::to_string(size) + " numbers, found " +
+                           std::to_string(j.size()) + " elements",
+                       f.doc);
+        std::vector<double> v(size);
+        bool ok = true;
+        for (size_t i = 0; i < size; ++i) {
+          std::string at = pointer_append(pointer, i);
+          if (!j[i].is_number()) {
+            error(at, "expected a number, found " + json_describe(j[i]));
+            ok = false;
+            continue;
+          }
+          v[i] = j[i].get<double>();
+          ok = check_number(f, v[i], at, f.name + "[" + std::to_string(i) + "]") && ok;
+        }
+        if (ok) out.numbers[f.name] = v;
+        return;
+      }
+      case SceneFieldType::Text:
+        if (!j.is_string()) return expected("a string");
+        if (j.get<std::string>().empty()) return error(pointer, "expected a non-empty string", f.doc);
+        out.texts[f.name] = j.get<std::string>();
+        return;
+      case SceneFieldType::Choice: {
+        if (!j.is_string()) return expected("one of " + join_alternatives(f.choices));
+        auto text = j.get<std::string>();
+        if (std::find(f.choices.begin(), f.choices.end(), text) == f.choices.end()) {
+          std::string suggestion = closest_match(text, f.choices);
+          return error(pointer, "unknown " + f.name + " \"" + text + "\"",
+                       (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
+                           "valid values: " + join_alternatives(f.choices));
+        }
+        out.texts[f.name] = text;
+        return;
+      }
+      case SceneFieldType::Object:
+        if (!j.is_object()) expected("an object");
+        return;
+    }
+  }
+
+  // A unit vector along `v`, or an error at `pointer` when `v` has no direction.
+  std::optional<glm::dvec3> direction(glm::dvec3 v, const std::string& pointer, const std::string& what) {
+    double length = glm::length(v);
+    if (!(length > 1e-12)) {
+      error(pointer, what + " has zero length: it gives no direction", "write a non-zero vector");
+      return std::nullopt;
+    }
+    return v / length;
+  }
+
+  void read_materials(const Json& root, Scene& scene) {
+    auto it = root.find("materials");
+    if (it == root.end()) {
+      error("", "missing \"materials\"", "list the material files, e.g. \"materials\": [\"../materials/brass.json\"]");
+      return;
+    }
+    if (!it->is_array()) {
+      error("/materials", "expected an array of material file paths, found " + json_kind(*it));
+      return;
+    }
+    if (it->empty()) error("/materials", "the scene lists no material file", "add at least one material file");
+    std::map<std::filesystem::path, size_t> files;
+    std::map<std::string, size_t> names;  // material name -> index in scene.material_files
+    for (size_t i = 0; i < it->size(); ++i) {
+      std::string pointer = pointer_append("/materials", i);
+      const Json& entry = (*it)[i];
+      if (!entry.is_string() || entry.get<std::string>().empty()) {
+        error(pointer, "expected the path of a material file, found " + json_describe(entry));
+        continue;
+      }
+      MaterialFileRef ref;
+      ref.path = entry.get<std::string>();
+      ref.resolved = resolve(ref.path);
+      if (auto [first, inserted] = files.emplace(ref.resolved, i); !inserted) {
+        error(pointer,
+              "material file " + ref.resolved.string() + " is listed twice (also /materials/" +
+                  std::to_string(first->second) + ")",
+              "remove one of them");
+        continue;
+      }
+      if (!is_file(ref.resolved)) {
+        error(pointer, "material file not found: " + ref.resolved.string(),
+              "paths are relative to the scene file's directory");
+        continue;
+      }
+      CheckedFile checked;
+      try {
+        checked = check_file(ref.resolved);
+      } catch (const IoError& e) {
+        error(pointer, std::string("cannot read the material file: ") + e.what());
+        continue;
+      }
+      diag_.append(checked.diagnostics);
+      if (!checked.ok()) materials_incomplete_ = true;
+      ref.document = std::move(checked.document);
+      for (const auto& m : ref.document.materials) {
+        if (m.name.empty()) continue;
+        auto [first, inserted] = names.emplace(m.name, scene.material_files.size());
+        if (!inserted)
+          error(pointer,
+                "material " + single_quoted(m.name) + " is defined in both " +
+                    scene.material_files[first->second].resolved.string() + " and " + ref.resolved.string(),
+                "objects name materials, so each name must be defined once: rename one of them");
+      }
+      scene.material_files.push_back(std::move(ref));
+    }
+    if (scene.material_files.size() != it->size()) materials_incomplete_ = true;
+  }
+
+  std::optional<Camera> read_camera(const Json& j, const std::string& pointer) {
+    FieldValues v;
+    if (!read_fields(j, pointer, camera_fields(), "a camera", v)) return std::nullopt;
+    Camera c;
+    c.name = v.text("name");
+    c.position = v.vec3("position", c.position);
+    c.look_at = v.vec3("look_at", c.look_at);
+    c.up = v.vec3("up", c.up);
+    c.yfov_deg = v.number("yfov", c.yfov_deg);
+    c.aspect = v.number("aspect", c.aspect);
+    c.znear = v.number("znear", c.znear);
+    c.zfar = v.optional_number("zfar");
+    bool ok = true;
+    if (glm::length(c.look_at - c.position) < 1e-9) {
+      error(pointer + "/look_at", "look_at equals position: the camera has no view direction",
+            "look at a point away from the camera");
+      ok = false;
+    } else if (auto up = direction(c.up, pointer + "/up", "up")) {
+      glm::dvec3 view = glm::normalize(c.look_at - c.position);
+      if (glm::length(glm::cross(view, *up)) < 1e-6) {
+        error(pointer + "/up", "up is parallel to the view direction: the camera's roll is undefined",
+              "choose an up vector across the view direction, e.g. [0, 1, 0] unless looking straight up or down");
+        ok = false;
+      }
+    } else {
+      ok = false;
+    }
+    if (c.zfar && !(*c.zfar > c.znear)) {
+      error(pointer + "/zfar",
+            "zfar = " + number_text(*c.zfar) + " must be greater than znear = " + number_text(c.znear));
+      ok = false;
+    }
+    return ok ? std::optional<Camera>(c) : std::nullopt;
+  }
+
+  std::optional<Light> read_light(const Json& j, const std::string& pointer) {
+    auto type = j.find("type");
+    FieldValues probe;
+    if (type == j.end()) {
+      error(pointer, "missing \"type\" of a light", "valid types: " + join_alternatives(light_type_names()));
+      return std::nullopt;
+    }
+    read_field(light_fields(LightType::Point)[1], *type, pointer + "/type", probe);
+    if (!probe.has("type")) return std::nullopt;
+    const auto& names = light_type_names();
+    auto t = static_cast<LightType>(std::find(names.begin(), names.end(), probe.text("type")) - names.begin());
+    FieldValues v;
+    if (!read_fields(j, pointer, light_fields(t), "a " + probe.text("type") + " light", v)) return std::nullopt;
+    Light l;
+    l.name = v.text("name");
+    l.type = t;
+    l.color = v.vec3("color", l.color);
+    l.intensity = v.number("intensity", l.intensity);
+    l.position = v.vec3("position", l.position);
+    l.range = v.optional_number("range");
+    l.inner_cone_deg = v.number("inner_cone", l.inner_cone_deg);
+    l.outer_cone_deg = v.number("outer_cone", l.outer_cone_deg);
+    if (t == LightType::Directional || t == LightType::Spot) {
+      auto d = direction(v.vec3("direction", l.direction), pointer + "/direction", "direction");
+      if (!d) return std::nullopt;
+      l.direction = *d;
+    }
+    if (t == LightType::Spot && !(l.inner_cone_deg < l.outer_cone_deg)) {
+      // KHR_lights_punctual: innerConeAngle must be less than outerConeAngle.
+      error(pointer + "/inner_cone",
+            "inner_cone = " + number_text(l.inner_cone_deg) +
+                " must be less than outer_cone = " + number_text(l.outer_cone_deg),
+            "the falloff runs from inner_cone to outer_cone");
+      return std::nullopt;
+    }
+    if (t == LightType::Environment) {
+      l.file = v.text("file");
+      l.resolved_file = resolve(l.file);
+      if (!is_file(l.resolved_file)) {
+        error(pointer + "/file", "environment image not found: " + l.resolved_file.string(),
+              "paths are relative to the scene file's directory");
+        return std::nullopt;
+      }
+    }
+    return l;
+  }
+
+  std::optional<Transform> read_transform(const Json& j, const std::string& pointer) {
+    FieldValues v;
+    if (!read_fields(j, pointer, transform_fields(), "a transform", v)) return std::nullopt;
+    Transform t;
+    t.translation = v.vec3("translation", t.translation);
+    t.scale = v.vec3("scale", t.scale);
+    if (v.has("rotation") && v.has("rotation_deg")) {
+      error(pointer + "/rotation_deg", "give only one of \"rotation\" or \"rotation_deg\"",
+            "they describe the same rotation");
+      return std::nullopt;
+    }
+    if (v.has("rotation")) {
+      const auto& q = v.numbers.at("rotation");
+      glm::dquat rotation(q[3], q[0], q[1], q[2]);
+      double length = glm::length(rotation);
+      if (!(length > 1e-12)) {
+        error(pointer + "/rotation", "the quaternion has zero length: it is no rotation",
+              "the identity is [0, 0, 0, 1] (x, y, z, w)");
+        return std::nullopt;
+      }
+      if (std::abs(length - 1.0) > 1e-3)
+        diag_.warning(file_, pointer + "/rotation",
+                      "the quaternion has length " + number_text(length) + ", not 1: it is normalised",
+                      "write a unit quaternion [x, y, z, w]");
+      t.rotation = rotation / length;
+    } else if (v.has("rotation_deg")) {
+      glm::dvec3 a = glm::radians(v.vec3("rotation_deg", glm::dvec3(0.0)));
+      // Fixed axes x, then y, then z: R = Rz Ry Rx.
+      t.rotation = glm::angleAxis(a.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) *
+                   glm::angleAxis(a.x, glm::dvec3(1, 0, 0));
+    }
+    return t;
+  }
+
+  std::optional<SceneObject> read_object(const Json& j, const std::string& pointer) {
+    auto shape = j.find("shape");
+    if (shape == j.end()) {
+      error(pointer, "missing \"shape\" of an object", "valid shapes: " + join_alternatives(shape_names()));
+      return std::nullopt;
+    }
+    FieldValues probe;
+    read_field(object_fields(ShapeType::Sphere)[1], *shape, pointer + "/shape", probe);
+    if (!probe.has("shape")) return std::nullopt;
+    const auto& names = shape_names();
+    auto s = static_cast<ShapeType>(std::find(names.begin(), names.end(), probe.text("shape")) - names.begin());
+    FieldValues v;
+    bool ok = read_fields(j, pointer, object_fields(s), "a " + probe.text("shape"), v);
+    SceneObject o;
+    o.name = v.text("name");
+    o.shape = s;
+    o.material = v.text("material");
+    o.radius = v.number("radius", o.radius);
+    o.major_radius = v.number("major_radius", o.major_radius);
+    o.minor_radius = v.number("minor_radius", o.minor_radius);
+    o.segments = static_cast<int>(v.number("segments", o.segments));
+    if (s == ShapeType::Plane) o.plane_size = v.vec2("size", o.plane_size);
+    if (s == ShapeType::Box) o.box_size = v.vec3("size", o.box_size);
+    if (auto t = j.find("transform"); t != j.end() && t->is_object()) {
+      auto transform = read_transform(*t, pointer + "/transform");
+      if (transform)
+        o.transform = *transform;
+      else
+        ok = false;
+    }
+    if (!ok) return std::nullopt;
+    if (s == ShapeType::Torus && !(o.minor_radius < o.major_radius)) {
+      error(pointer + "/minor_radius",
+            "minor_radius = " + number_text(o.minor_radius) +
+                " must be less than major_radius = " + number_text(o.major_radius),
+            "a thicker tube intersects itself");
+      return std::nullopt;
+    }
+    if (s == ShapeType::Mesh && !read_mesh_file(o, v.text("file"), pointer + "/file")) return std::nullopt;
+    return o;
+  }
+
+  bool read_mesh_file(SceneObject& o, const std::string& written, const std::string& pointer) {
+    o.mesh_file = written;
+    o.resolved_mesh_file = resolve(written);
+    if (!has_extension(o.resolved_mesh_file, {".gltf", ".glb"})) {
+      error(pointer, "expected a .gltf or .glb mesh file, found \"" + written + "\"");
+      return false;
+    }
+    if (!is_file(o.resolved_mesh_file)) {
+      error(pointer, "mesh file not found: " + o.resolved_mesh_file.string(),
+            "paths are relative to the scene file's directory");
+      return false;
+    }
+    // Loaded now so that a file without triangles is reported here, not when exporting.
+    try {
+      object_mesh(o);
+    } catch (const IoError& e) {
+      error(pointer, e.what());
+      return false;
+    }
+    return true;
+  }
+
+  void check_material_names(const Scene& scene, const std::vector<std::string>& pointers) {
+    // With a material file missing or broken, unknown names would only be knock-on errors.
+    if (materials_incomplete_) return;
+    std::vector<std::string> known;
+    for (const auto& f : scene.material_files)
+      for (const auto& m : f.document.materials) known.push_back(m.name);
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+      const auto& name = scene.objects[i].material;
+      if (scene.find_material(name)) continue;
+      std::string suggestion = closest_match(name, known);
+      error(pointers[i] + "/material", "unknown material " + single_quoted(name),
+            (suggestion.empty() ? std::string() : "did you mean " + single_quoted(suggestion) + "? ") +
+                "the scene's material files define " + join_alternatives(known));
+    }
+  }
+
+  const std::string& file_;
+  std::filesystem::path dir_;
+  Diagnostics& diag_;
+  bool materials_incomplete_ = false;
+};
+
+}  // namespace
+
+Scene read_scene(std::string_view text, const std::string& file, Diagnostics& diagnostics) {
+  return SceneReader(file, diagnostics).read(text);
+}
+
+Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostics) {
+  return read_scene(read_text_file(path), path.string(), diagnostics);
+}
+
+}  // namespace lamina
