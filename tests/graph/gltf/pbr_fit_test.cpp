@@ -1,0 +1,244 @@
+// glTF's reference BRDF on the CPU (values against an independent python transcription of the
+// specification's formulas, physical properties, albedo quadrature) and the fit of its parameters
+// (recovering known glTF parameters; every bundled example fitted within documented limits).
+#include "graph/gltf/pbr_fit.h"
+
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "../cpu_test_support.h"
+#include "test_support.h"
+
+using namespace lamina;
+using glm::vec3;
+using gltf::PbrParams;
+
+namespace {
+
+PbrParams params(vec3 base, float metallic, float roughness) {
+  PbrParams p;
+  p.base_color = base;
+  p.metallic = metallic;
+  p.roughness = roughness;
+  return p;
+}
+
+PbrParams plastic() { return params({0.8f, 0.2f, 0.1f}, 0.0f, 0.5f); }
+PbrParams metal() { return params({0.95f, 0.64f, 0.54f}, 1.0f, 0.3f); }
+PbrParams ior_specular() {
+  PbrParams p = params({0.2f, 0.5f, 0.3f}, 0.3f, 0.7f);
+  p.ior = 1.8f;
+  p.specular = 0.7f;
+  p.specular_color = {1.5f, 0.8f, 14.0f};  // blue: 0.0816 * 14 > 1, so the min(..., 1) clamp acts
+  return p;
+}
+PbrParams coated() {
+  PbrParams p = params({0.1f, 0.3f, 0.7f}, 0.0f, 0.6f);
+  p.clearcoat = 0.8f;
+  p.clearcoat_roughness = 0.2f;
+  return p;
+}
+
+std::vector<PbrParams> parameter_sets() {
+  std::vector<PbrParams> sets{plastic(), metal(), ior_specular(), coated()};
+  PbrParams smooth = params({0.5f, 0.5f, 0.5f}, 0.5f, 0.0f);  // roughness 0: the alpha floor
+  smooth.clearcoat = 1.0f;
+  sets.push_back(smooth);
+  return sets;
+}
+
+std::string describe(vec3 v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+void check_close(vec3 actual, vec3 expected, float relative) {
+  for (int c = 0; c < 3; ++c) CHECK(actual[c] == doctest::Approx(expected[c]).epsilon(relative));
+}
+
+vec3 random_direction(std::mt19937_64& rng) {
+  double cos_theta = test::uniform(rng), phi = 2.0 * test::kPi * test::uniform(rng);
+  return test::to_float(test::from_cosine(cos_theta, phi));
+}
+
+gltf::FitTarget target_of(const PbrParams& p) {
+  return {[p](vec3 wi, vec3 wo) { return gltf::pbr_eval(p, wi, wo); },
+          [p](vec3 wo) { return gltf::pbr_albedo(p, wo); }};
+}
+
+}  // namespace
+
+TEST_CASE("pbr_eval matches an independent transcription of the glTF specification's formulas") {
+  // Expected values: a python transcription of Appendix B sec. B.3.2-B.3.4 with the
+  // KHR_materials_ior, _specular and _clearcoat "Implementation" sections, in double precision:
+  //   brdf(base, metallic, rough, ior, spec, spec_col, cc, ccr, L, V) with L, V normalised,
+  //   H = normalize(L + V), D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2), a = rough^2,
+  //   Vis = 1/(N.L + sqrt(a^2 + (1 - a^2)(N.L)^2)) * 1/(N.V + sqrt(a^2 + (1 - a^2)(N.V)^2)),
+  //   w = (1 - |V.H|)^5, f0 = ((ior - 1)/(ior + 1))^2, df0 = min(f0 spec_col, 1) spec,
+  //   F = df0 + (spec - df0) w, diel = F Vis D + (1 - max(F)) base / pi,
+  //   metal = Vis D (base + (1 - base) w), m = mix(diel, metal, metallic),
+  //   coated = (1 - cc Fc) m + cc Fc Vis(ccr^2) D(ccr^2), Fc = 0.04 + 0.96 (1 - N.V)^5.
+  auto n = [](vec3 v) { return glm::normalize(v); };
+  // brdf(base=[0.8,0.2,0.1], metallic=0, rough=0.5, L=[0.3,0.2,0.9], V=[-0.5,0.1,0.7])
+  check_close(gltf::pbr_eval(plastic(), n({0.3f, 0.2f, 0.9f}), n({-0.5f, 0.1f, 0.7f})),
+              {0.264648673f, 0.0813047303f, 0.0507474065f}, 2e-5f);
+  // brdf(base=[0.95,0.64,0.54], metallic=1, rough=0.3, L=[0.4,-0.1,0.6], V=[-0.35,0.05,0.8])
+  check_close(gltf::pbr_eval(metal(), n({0.4f, -0.1f, 0.6f}), n({-0.35f, 0.05f, 0.8f})),
+              {2.66965754f, 1.7985358f, 1.51752879f}, 2e-5f);
+  // brdf(base=[0.2,0.5,0.3], metallic=0.3, rough=0.7, ior=1.8, spec=0.7, spec_col=[1.5,0.8,14],
+  //      L=[0.7,0.3,0.3], V=[-0.2,-0.4,0.6])
+  check_close(gltf::pbr_eval(ior_specular(), n({0.7f, 0.3f, 0.3f}), n({-0.2f, -0.4f, 0.6f})),
+              {0.0500500033f, 0.0884970705f, 0.193202743f}, 2e-5f);
+  // brdf(base=[0.1,0.3,0.7], metallic=0, rough=0.6, cc=0.8, ccr=0.2, L=[0.25,0.1,0.9], V=[-0.3,-0.1,0.85])
+  check_close(gltf::pbr_eval(coated(), n({0.25f, 0.1f, 0.9f}), n({-0.3f, -0.1f, 0.85f})),
+              {0.6489296f, 0.708089335f, 0.826408804f}, 2e-5f);
+}
+
+TEST_CASE("pbr_eval is finite, non-negative, zero below the horizon and reciprocal without a clearcoat") {
+  std::mt19937_64 rng(20240611);
+  for (const PbrParams& p : parameter_sets()) {
+    int bad = 0, below = 0, not_reciprocal = 0, coat_asymmetric = 0;
+    for (int i = 0; i < 4000; ++i) {
+      vec3 wi = random_direction(rng), wo = random_direction(rng);
+      vec3 f = gltf::pbr_eval(p, wi, wo), g = gltf::pbr_eval(p, wo, wi);
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(f[c]) || f[c] < 0.0f) ++bad;
+        bool equal = std::abs(f[c] - g[c]) <= 1e-5f * std::max(1.0f, std::abs(f[c]));
+        if (p.clearcoat == 0.0f && !equal) ++not_reciprocal;
+        if (p.clearcoat > 0.0f && !equal) ++coat_asymmetric;
+      }
+      vec3 wo_below(wo.x, wo.y, -wo.z);
+      if (gltf::pbr_eval(p, wi, wo_below) != vec3(0.0f) || gltf::pbr_eval(p, wo_below, wi) != vec3(0.0f)) ++below;
+      // With a clearcoat, f weights the layers by a Fresnel term of N.V alone
+      // (KHR_materials_clearcoat): swapping directions of equal elevation leaves f unchanged.
+      vec3 wi_same(-wo.y, wo.x, wo.z);
+      vec3 h = gltf::pbr_eval(p, wi_same, wo), k = gltf::pbr_eval(p, wo, wi_same);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(h[c] - k[c]) > 1e-5f * std::max(1.0f, std::abs(h[c]))) ++not_reciprocal;
+    }
+    CHECK(bad == 0);
+    CHECK(below == 0);
+    CHECK(not_reciprocal == 0);
+    // ... but not in general: the spec's N.V Fresnel is not reciprocal, and this implements it as written.
+    if (p.clearcoat > 0.0f) CHECK(coat_asymmetric > 0);
+  }
+  CHECK(gltf::pbr_eval(plastic(), vec3(0.0f, 0.0f, 1.0f), vec3(1.0f, 0.0f, 0.0f)) == vec3(0.0f));
+}
+
+TEST_CASE("pbr_albedo integrates a white Lambert to one and a rough white metal to 1 - ln 2") {
+  PbrParams lambert = params(vec3(1.0f), 0.0f, 0.5f);
+  lambert.specular = 0.0f;  // dielectric_f0 = dielectric_f90 = 0: pure diffuse
+  PbrParams rough_metal = params(vec3(1.0f), 1.0f, 1.0f);
+  for (float degrees : {0.0f, 30.0f, 60.0f, 80.0f}) {
+    float theta = degrees * float(test::kPi) / 180.0f;
+    vec3 wo(std::sin(theta), 0.0f, std::cos(theta));
+    vec3 a = gltf::pbr_albedo(lambert, wo);
+    for (int c = 0; c < 3; ++c) CHECK(a[c] == doctest::Approx(1.0f).epsilon(1e-3));
+    vec3 m = gltf::pbr_albedo(rough_metal, wo);
+    CHECK(m.x < 1.0f);  // single scattering loses energy
+    CHECK(m.x > 0.0f);
+  }
+  // Alpha = 1 makes D = 1/pi, so at normal incidence (F = 1 for base colour 1) f cos integrates to
+  // 2 pi int_0^1 (1/pi) / ((mu + 1) * 2) mu dmu = 1 - ln 2.
+  vec3 normal(0.0f, 0.0f, 1.0f);
+  CHECK(gltf::pbr_albedo(rough_metal, normal).x == doctest::Approx(1.0 - std::log(2.0)).epsilon(2e-3));
+  // Python midpoint rule in (cos theta_i, phi), 400 x 200 cells, of the transcription above:
+  // metal base 1 roughness 1 at 60 degrees: 0.409137353; plastic base 0.5 roughness 0.7 at 60: 0.514908808.
+  vec3 wo60(std::sin(float(test::kPi) / 3.0f), 0.0f, 0.5f);
+  CHECK(gltf::pbr_albedo(rough_metal, wo60).x == doctest::Approx(0.409137353).epsilon(3e-3));
+  CHECK(gltf::pbr_albedo(params(vec3(0.5f), 0.0f, 0.7f), wo60).x == doctest::Approx(0.514908808).epsilon(3e-3));
+}
+
+TEST_CASE("fit_pbr recovers the parameters of glTF materials fitted to themselves") {
+  struct Case {
+    const char* name;
+    PbrParams truth;
+  };
+  PbrParams self_plastic = params({0.7f, 0.3f, 0.15f}, 0.0f, 0.45f);
+  PbrParams self_metal = params({0.9f, 0.7f, 0.35f}, 1.0f, 0.3f);
+  PbrParams self_coated = params({0.1f, 0.35f, 0.6f}, 0.0f, 0.7f);
+  self_coated.clearcoat = 1.0f;
+  self_coated.clearcoat_roughness = 0.1f;
+  for (const Case& c : {Case{"plastic", self_plastic}, Case{"metal", self_metal}, Case{"coated", self_coated}}) {
+    gltf::FitResult fit = gltf::fit_pbr(target_of(c.truth));
+    const PbrParams& p = fit.params;
+    INFO(c.name, ": base ", describe(p.base_color), " metallic ", p.metallic, " roughness ", p.roughness, " clearcoat ",
+         p.clearcoat, " / ", p.clearcoat_roughness, " rms ", fit.error.rms);
+    for (int k = 0; k < 3; ++k) CHECK(std::abs(p.base_color[k] - c.truth.base_color[k]) < 0.02f);
+    CHECK(std::abs(p.roughness - c.truth.roughness) < 0.05f);
+    CHECK(std::abs(p.metallic - c.truth.metallic) < 0.1f);
+    CHECK(fit.uses_clearcoat == (c.truth.clearcoat > 0.0f));
+    CHECK_FALSE(fit.uses_ior);
+    CHECK_FALSE(fit.uses_specular);
+    if (fit.uses_clearcoat) {
+      CHECK(std::abs(p.clearcoat - c.truth.clearcoat) < 0.1f);
+      CHECK(std::abs(p.clearcoat_roughness - c.truth.clearcoat_roughness) < 0.05f);
+    }
+    CHECK(fit.error.albedo_normal < 0.01f);
+    CHECK(fit.error.albedo_grazing < 0.01f);
+    CHECK(fit.error.rms < 0.02f);
+  }
+}
+
+namespace {
+
+// The share of the target's albedo no glTF fit can reach: the reference BRDF reflects at most all
+// light, but lamina's model exceeds 1 for several examples (cpu_physics_test.cpp, white furnace).
+float unreachable(vec3 albedo) {
+  float worst = 0.0f;
+  for (int c = 0; c < 3; ++c) worst = std::max(worst, std::max(0.0f, albedo[c] - 1.0f) / albedo[c]);
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("fit_pbr fits every bundled example within its limits, deterministically") {
+  // Limits on the relative albedo error beyond the unreachable share: 0.15 at normal incidence and
+  // 0.2 at 80 degrees for a dielectric coat over a diffuse base (the fit keeps metallic < 0.5);
+  // 0.25 and 0.25 for the others (one Schlick-Fresnel GGX lobe per layer, no absorption or
+  // refraction between layers, where lamina's metals under coats concentrate energy near the normal).
+  std::string table =
+      "\nname                   base colour           metal rough  ior   spec  spec colour          coat  c.rough"
+      " ext | A(0) err A(80) err  rms    time\n";
+  for (const auto& file : test::example_files()) {
+    std::string name = file.stem().string();
+    cpu::Evaluator material = test::load_evaluator(file);
+    ShadingContext ctx;
+    ctx.uv = glm::vec2(0.5f);
+    auto start = std::chrono::steady_clock::now();
+    gltf::FitResult fit = gltf::fit_pbr(material, ctx);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    gltf::FitResult again = gltf::fit_pbr(material, ctx);
+    const PbrParams& p = fit.params;
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%-22s (%.3f,%.3f,%.3f)  %.3f %.3f  %.3f %.3f (%.2f,%.2f,%.2f)  %.3f %.3f   %c%c%c | %.4f   %.4f   "
+                  "%.4f %.2fs\n",
+                  name.c_str(), p.base_color.x, p.base_color.y, p.base_color.z, p.metallic, p.roughness, p.ior,
+                  p.specular, p.specular_color.x, p.specular_color.y, p.specular_color.z, p.clearcoat,
+                  p.clearcoat_roughness, fit.uses_clearcoat ? 'c' : '-', fit.uses_ior ? 'i' : '-',
+                  fit.uses_specular ? 's' : '-', fit.error.albedo_normal, fit.error.albedo_grazing, fit.error.rms,
+                  seconds);
+    table += line;
+    INFO(line);
+    bool simple = p.metallic < 0.5f && !fit.uses_clearcoat;
+    float normal_limit = simple ? 0.15f : 0.25f, grazing_limit = simple ? 0.2f : 0.25f;
+    vec3 normal(0.0f, 0.0f, 1.0f), grazing(std::sin(1.3962634f), 0.0f, std::cos(1.3962634f));
+    CHECK(fit.error.albedo_normal < unreachable(material.albedo(ctx, normal)) + normal_limit);
+    CHECK(fit.error.albedo_grazing < unreachable(material.albedo(ctx, grazing)) + grazing_limit);
+    CHECK(fit.error.rms < 0.6f);
+    CHECK(std::memcmp(&fit.params, &again.params, sizeof(PbrParams)) == 0);
+    CHECK(fit.error.rms == again.error.rms);
+    CHECK(fit.uses_ior == again.uses_ior);
+  }
+  MESSAGE(table);
+}
