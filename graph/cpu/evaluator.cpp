@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "graph/cpu/image.h"
+#include "graph/hammersley.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina::cpu {
@@ -376,18 +377,11 @@ std::vector<float> Evaluator::lobe_weights(const ShadingContext& ctx, vec3 wo) c
   return std::vector<float>(weights.begin(), weights.begin() + count);
 }
 
-namespace {
-
-float radical_inverse_base2(uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return float(bits) * 2.3283064365386963e-10f;
+std::vector<float> Evaluator::texture_registers(const ShadingContext& ctx) const {
+  Resolved r;
+  resolve(ctx, r);
+  return std::vector<float>(r.regs.begin(), r.regs.begin() + program_.slot_count);
 }
-
-}  // namespace
 
 vec3 Evaluator::albedo(const ShadingContext& ctx, vec3 wo, int points_per_lobe) const {
   if (wo.z <= 0.0f || points_per_lobe <= 0) return vec3(0.0f);
@@ -402,7 +396,7 @@ vec3 Evaluator::albedo(const ShadingContext& ctx, vec3 wo, int points_per_lobe) 
     float u_lobe = std::min(lo + 0.5f * weights[j], 1.0f - 1.0e-7f);
     vec3 sum(0.0f);
     for (int i = 0; i < points_per_lobe; ++i) {
-      vec2 u((float(i) + 0.5f) / float(points_per_lobe), radical_inverse_base2(uint32_t(i)));
+      vec2 u = hammersley(uint32_t(i), uint32_t(points_per_lobe));
       Sample s = sample(ctx, wo, u, u_lobe);
       if (s.pdf > 0.0f && s.lobe == int(j)) sum += s.f * s.wi.z / s.pdf;
     }

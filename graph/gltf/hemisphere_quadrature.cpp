@@ -4,21 +4,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "graph/hammersley.h"
+
 namespace lamina::gltf {
 
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
-
-// Van der Corput radical inverse in base 2: the second Hammersley coordinate.
-float radical_inverse(uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return float(bits) * 2.3283064365386963e-10f;
-}
 
 float cosine_pdf(glm::vec3 wi) { return wi.z > 0.0f ? wi.z / kPi : 0.0f; }
 
@@ -52,7 +44,7 @@ std::vector<WeightedDirection> hemisphere_quadrature(glm::vec3 wo, std::span<con
   out.reserve(size_t(strategies * per_strategy));
   for (int s = 0; s < strategies; ++s) {
     for (int i = 0; i < per_strategy; ++i) {
-      float u1 = (float(i) + 0.5f) / float(per_strategy), u2 = radical_inverse(uint32_t(i));
+      float u1 = (float(i) + 0.5f) / float(per_strategy), u2 = radical_inverse_base2(uint32_t(i));
       float phi = 2.0f * kPi * u2;
       glm::vec3 wi;
       if (s == 0) {
