@@ -62,6 +62,9 @@ class Evaluator {
   const std::string& lobe_name(size_t i) const { return lobes_[i].name; }
   // The selection probabilities at wo (they sum to 1).
   std::vector<float> lobe_weights(const ShadingContext& ctx, glm::vec3 wo) const;
+  // The texture registers at a shading point (Program::slot_count floats): two points with equal
+  // registers have the same BRDF, which back ends that bake textures use to group texels.
+  std::vector<float> texture_registers(const ShadingContext& ctx) const;
 
   struct Resolved;  // parameters at one shading point (evaluator.cpp)
 

@@ -270,7 +270,12 @@ FitResult fit_pbr(const FitTarget& target) {
 
   result.params = best.params;
   glm::vec3 normal = view_direction(0.0f), grazing = view_direction(80.0f);
-  result.error.albedo_normal = relative_albedo_error(pbr_albedo(best.params, normal), target.albedo(normal));
+  const glm::vec3 target_normal = target.albedo(normal);
+  result.error.albedo_normal = relative_albedo_error(pbr_albedo(best.params, normal), target_normal);
+  for (int c = 0; c < 3; ++c)
+    if (target_normal[c] > 1.0f)
+      result.error.unreachable_normal =
+          std::max(result.error.unreachable_normal, (target_normal[c] - 1.0f) / target_normal[c]);
   result.error.albedo_grazing = relative_albedo_error(pbr_albedo(best.params, grazing), target.albedo(grazing));
   result.error.rms = objective.target_j() > 0.0 ? float(std::sqrt(best.j / objective.target_j())) : 0.0f;
   return result;

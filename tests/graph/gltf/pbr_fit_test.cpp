@@ -236,6 +236,8 @@ TEST_CASE("fit_pbr fits every bundled example within its limits, deterministical
     CHECK(fit.error.albedo_normal < unreachable(material.albedo(ctx, normal)) + normal_limit);
     CHECK(fit.error.albedo_grazing < unreachable(material.albedo(ctx, grazing)) + grazing_limit);
     CHECK(fit.error.rms < 0.6f);
+    // The reported unreachable share is (A - 1) / A of the material's own albedo at normal incidence.
+    CHECK(fit.error.unreachable_normal == doctest::Approx(unreachable(material.albedo(ctx, normal))).epsilon(1e-4));
     CHECK(std::memcmp(&fit.params, &again.params, sizeof(PbrParams)) == 0);
     CHECK(fit.error.rms == again.error.rms);
     CHECK(fit.uses_ior == again.uses_ior);

@@ -1,0 +1,290 @@
+#include "graph/gltf/fallback.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "graph/cpu/evaluator.h"
+
+namespace lamina::gltf {
+
+namespace {
+
+PbrParams lerp(const PbrParams& a, const PbrParams& b, float t) {
+  PbrParams p;
+  p.base_color = glm::mix(a.base_color, b.base_color, t);
+  p.metallic = std::lerp(a.metallic, b.metallic, t);
+  p.roughness = std::lerp(a.roughness, b.roughness, t);
+  p.ior = std::lerp(a.ior, b.ior, t);
+  p.specular = std::lerp(a.specular, b.specular, t);
+  p.specular_color = glm::mix(a.specular_color, b.specular_color, t);
+  p.clearcoat = std::lerp(a.clearcoat, b.clearcoat, t);
+  p.clearcoat_roughness = std::lerp(a.clearcoat_roughness, b.clearcoat_roughness, t);
+  return p;
+}
+
+// The sRGB encoding (IEC 61966-2-1), inverse of the decoding texture/image applies; glTF stores
+// base colour textures encoded this way.
+glm::vec3 linear_to_srgb(glm::vec3 c) {
+  glm::vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    float v = std::clamp(c[i], 0.0f, 1.0f);
+    out[i] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  }
+  return out;
+}
+
+uint8_t to_byte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+void widen(FitError& worst, const FitError& e) {
+  worst.albedo_normal = std::max(worst.albedo_normal, e.albedo_normal);
+  worst.unreachable_normal = std::max(worst.unreachable_normal, e.unreachable_normal);
+  worst.albedo_grazing = std::max(worst.albedo_grazing, e.albedo_grazing);
+  worst.rms = std::max(worst.rms, e.rms);
+}
+
+// The distinct texture states over the bake grid: which state each texel has, and each state's
+// registers and first texel.
+struct StateGrid {
+  std::vector<std::vector<float>> registers;
+  std::vector<glm::vec2> first_uv;
+  std::vector<int> texels;
+  std::vector<int> state_of;  // per texel, row-major from the top-left
+};
+
+StateGrid texture_states(const cpu::Evaluator& evaluator, int size) {
+  StateGrid grid;
+  std::map<std::vector<float>, int> index;
+  grid.state_of.resize(static_cast<size_t>(size) * static_cast<size_t>(size));
+  ShadingContext ctx;
+  for (int row = 0; row < size; ++row)
+    for (int column = 0; column < size; ++column) {
+      ctx.uv = glm::vec2((float(column) + 0.5f) / float(size), (float(row) + 0.5f) / float(size));
+      auto registers = evaluator.texture_registers(ctx);
+      auto [it, inserted] = index.emplace(std::move(registers), static_cast<int>(grid.registers.size()));
+      if (inserted) {
+        grid.registers.push_back(it->first);
+        grid.first_uv.push_back(ctx.uv);
+        grid.texels.push_back(0);
+      }
+      ++grid.texels[static_cast<size_t>(it->second)];
+      grid.state_of[static_cast<size_t>(row) * static_cast<size_t>(size) + static_cast<size_t>(column)] = it->second;
+    }
+  return grid;
+}
+
+// Register-space distances with every register scaled to its range over the grid, so that a
+// colour in [0, 1] and a remapped weight count alike.
+class StateMetric {
+ public:
+  explicit StateMetric(const std::vector<std::vector<float>>& states) {
+    const size_t n = states.front().size();
+    lo_.assign(n, std::numeric_limits<float>::max());
+    scale_.assign(n, std::numeric_limits<float>::lowest());
+    for (const auto& s : states)
+      for (size_t i = 0; i < n; ++i) {
+        lo_[i] = std::min(lo_[i], s[i]);
+        scale_[i] = std::max(scale_[i], s[i]);
+      }
+    for (size_t i = 0; i < n; ++i) {
+      float range = scale_[i] - lo_[i];
+      scale_[i] = range > 0.0f ? 1.0f / range : 0.0f;
+    }
+  }
+  double distance2(const std::vector<float>& a, const std::vector<float>& b) const {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      double d = double(a[i] - b[i]) * double(scale_[i]);
+      sum += d * d;
+    }
+    return sum;
+  }
+  // Where the projection of x falls on the segment a..b, clamped to [0, 1].
+  float along(const std::vector<float>& x, const std::vector<float>& a, const std::vector<float>& b) const {
+    double dot = 0.0, length2 = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      double ab = double(b[i] - a[i]) * double(scale_[i]);
+      dot += double(x[i] - a[i]) * double(scale_[i]) * ab;
+      length2 += ab * ab;
+    }
+    return length2 > 0.0 ? static_cast<float>(std::clamp(dot / length2, 0.0, 1.0)) : 0.0f;
+  }
+
+ private:
+  std::vector<float> lo_, scale_;
+};
+
+// Farthest-point sampling: the state farthest from the mean first, then repeatedly the state
+// farthest from those chosen. Extremes come first, then the gaps between them fill in.
+std::vector<int> representatives(const std::vector<std::vector<float>>& states, const StateMetric& metric, int count) {
+  std::vector<float> mean(states.front().size(), 0.0f);
+  for (const auto& s : states)
+    for (size_t i = 0; i < s.size(); ++i) mean[i] += s[i] / float(states.size());
+  std::vector<double> nearest(states.size());
+  for (size_t s = 0; s < states.size(); ++s) nearest[s] = metric.distance2(states[s], mean);
+  std::vector<int> chosen;
+  while (static_cast<int>(chosen.size()) < count) {
+    size_t best = static_cast<size_t>(std::max_element(nearest.begin(), nearest.end()) - nearest.begin());
+    if (!chosen.empty() && nearest[best] <= 0.0) break;
+    chosen.push_back(static_cast<int>(best));
+    for (size_t s = 0; s < states.size(); ++s)
+      nearest[s] = chosen.size() == 1 ? metric.distance2(states[s], states[best])
+                                      : std::min(nearest[s], metric.distance2(states[s], states[best]));
+  }
+  return chosen;
+}
+
+struct Range {
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  void add(float v) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  // Constant when every texel would store the same byte.
+  bool varies() const { return to_byte(lo) != to_byte(hi); }
+};
+
+// The fallback from per-texel parameters: factors where a parameter is uniform, textures where it
+// varies. ior and the specular extension have no per-texel form worth baking here; they take the
+// texel-weighted mean.
+void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
+  Range base[3], metallic, roughness, clearcoat, clearcoat_roughness;
+  double ior = 0.0, specular = 0.0;
+  glm::dvec3 specular_color(0.0), base_mean(0.0);
+  double metallic_mean = 0.0, roughness_mean = 0.0, clearcoat_mean = 0.0, clearcoat_roughness_mean = 0.0;
+  for (const auto& p : texel_params) {
+    for (int c = 0; c < 3; ++c) base[c].add(linear_to_srgb(p.base_color)[c]);
+    metallic.add(p.metallic);
+    roughness.add(p.roughness);
+    clearcoat.add(p.clearcoat);
+    clearcoat_roughness.add(p.clearcoat_roughness);
+    ior += p.ior;
+    specular += p.specular;
+    specular_color += glm::dvec3(p.specular_color);
+    base_mean += glm::dvec3(p.base_color);
+    metallic_mean += p.metallic;
+    roughness_mean += p.roughness;
+    clearcoat_mean += p.clearcoat;
+    clearcoat_roughness_mean += p.clearcoat_roughness;
+  }
+  const double n = static_cast<double>(texel_params.size());
+  PbrParams& f = out.params;
+  f.ior = static_cast<float>(ior / n);
+  f.specular = static_cast<float>(specular / n);
+  f.specular_color = glm::vec3(specular_color / n);
+  const size_t texels = texel_params.size();
+
+  if (base[0].varies() || base[1].varies() || base[2].varies()) {
+    BakedImage image{size, 3, std::vector<uint8_t>(texels * 3)};
+    for (size_t t = 0; t < texels; ++t) {
+      glm::vec3 srgb = linear_to_srgb(texel_params[t].base_color);
+      for (int c = 0; c < 3; ++c) image.pixels[t * 3 + static_cast<size_t>(c)] = to_byte(srgb[c]);
+    }
+    out.base_color = std::move(image);
+    f.base_color = glm::vec3(1.0f);
+  } else {
+    f.base_color = glm::vec3(base_mean / n);
+  }
+  if (metallic.varies() || roughness.varies()) {
+    BakedImage image{size, 3, std::vector<uint8_t>(texels * 3, 0)};
+    for (size_t t = 0; t < texels; ++t) {
+      image.pixels[t * 3 + 1] = to_byte(texel_params[t].roughness);
+      image.pixels[t * 3 + 2] = to_byte(texel_params[t].metallic);
+    }
+    out.metallic_roughness = std::move(image);
+    f.metallic = f.roughness = 1.0f;
+  } else {
+    f.metallic = static_cast<float>(metallic_mean / n);
+    f.roughness = static_cast<float>(roughness_mean / n);
+  }
+  if (out.uses_clearcoat && (clearcoat.varies() || clearcoat_roughness.varies())) {
+    BakedImage image{size, 3, std::vector<uint8_t>(texels * 3, 0)};
+    for (size_t t = 0; t < texels; ++t) {
+      image.pixels[t * 3] = to_byte(texel_params[t].clearcoat);
+      image.pixels[t * 3 + 1] = to_byte(texel_params[t].clearcoat_roughness);
+    }
+    out.clearcoat = std::move(image);
+    f.clearcoat = f.clearcoat_roughness = 1.0f;
+  } else {
+    f.clearcoat = static_cast<float>(clearcoat_mean / n);
+    f.clearcoat_roughness = static_cast<float>(clearcoat_roughness_mean / n);
+  }
+}
+
+}  // namespace
+
+Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
+  const cpu::Evaluator evaluator(program);
+  Fallback out;
+  auto record = [&](const FitResult& fit, glm::vec2 uv, int texels) {
+    out.states.push_back({fit, uv, texels});
+    out.uses_ior = out.uses_ior || fit.uses_ior;
+    out.uses_specular = out.uses_specular || fit.uses_specular;
+    out.uses_clearcoat = out.uses_clearcoat || fit.uses_clearcoat;
+    widen(out.worst, fit.error);
+  };
+
+  if (program.ops.empty()) {
+    ShadingContext ctx;
+    ctx.uv = glm::vec2(0.5f);
+    FitResult fit = fit_pbr(evaluator, ctx);
+    record(fit, ctx.uv, 1);
+    out.params = fit.params;
+    return out;
+  }
+
+  const int size = std::max(1, options.bake_size);
+  const StateGrid grid = texture_states(evaluator, size);
+  const size_t state_count = grid.registers.size();
+  std::vector<PbrParams> state_params(state_count);
+  auto fit_state = [&](size_t s) {
+    ShadingContext ctx;
+    ctx.uv = grid.first_uv[s];
+    return fit_pbr(evaluator, ctx);
+  };
+
+  if (static_cast<int>(state_count) <= options.max_states) {
+    for (size_t s = 0; s < state_count; ++s) {
+      FitResult fit = fit_state(s);
+      record(fit, grid.first_uv[s], grid.texels[s]);
+      state_params[s] = fit.params;
+    }
+  } else {
+    // Fit a few representative states; every other state interpolates between the two nearest
+    // along the segment joining them (exact for a material that varies along one register).
+    out.interpolated = true;
+    const StateMetric metric(grid.registers);
+    const std::vector<int> chosen = representatives(grid.registers, metric, std::max(2, options.max_states));
+    std::vector<PbrParams> chosen_params;
+    for (int s : chosen) {
+      FitResult fit = fit_state(static_cast<size_t>(s));
+      record(fit, grid.first_uv[static_cast<size_t>(s)], grid.texels[static_cast<size_t>(s)]);
+      chosen_params.push_back(fit.params);
+    }
+    for (size_t s = 0; s < state_count; ++s) {
+      size_t first = 0, second = 0;
+      double d_first = std::numeric_limits<double>::max(), d_second = d_first;
+      for (size_t c = 0; c < chosen.size(); ++c) {
+        double d = metric.distance2(grid.registers[s], grid.registers[static_cast<size_t>(chosen[c])]);
+        if (d < d_first) {
+          second = first, d_second = d_first;
+          first = c, d_first = d;
+        } else if (d < d_second) {
+          second = c, d_second = d;
+        }
+      }
+      float t = metric.along(grid.registers[s], grid.registers[static_cast<size_t>(chosen[first])],
+                             grid.registers[static_cast<size_t>(chosen[second])]);
+      state_params[s] = lerp(chosen_params[first], chosen_params[second], t);
+    }
+  }
+
+  std::vector<PbrParams> texel_params(grid.state_of.size());
+  for (size_t t = 0; t < texel_params.size(); ++t)
+    texel_params[t] = state_params[static_cast<size_t>(grid.state_of[t])];
+  bake(texel_params, size, out);
+  return out;
+}
+
+}  // namespace lamina::gltf
