@@ -26,6 +26,8 @@ void add_eval(CLI::App& app, Runner& runner);
 void add_albedo(CLI::App& app, Runner& runner);
 void add_plot(CLI::App& app, Runner& runner);
 void add_glsl(CLI::App& app, Runner& runner);
+void add_gltf(CLI::App& app, Runner& runner);
+void add_import(CLI::App& app, Runner& runner);
 
 // Expands directories into the *.json files under them (sorted); files stay as given.
 // Throws IoError for a path that does not exist.

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   add_albedo(app, runner);
   add_plot(app, runner);
   add_glsl(app, runner);
+  add_gltf(app, runner);
+  add_import(app, runner);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

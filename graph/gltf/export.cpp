@@ -1,0 +1,349 @@
+#include "graph/gltf/export.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "graph/compile.h"
+#include "graph/gltf/gltf_buffer.h"
+#include "graph/gltf/png_encode.h"
+#include "graph/json_read.h"
+#include "graph/json_write.h"
+
+namespace lamina::gltf {
+
+namespace {
+
+// glTF sampler enumerations (spec sec. 5.26).
+constexpr int kLinear = 9729;
+constexpr int kLinearMipmapLinear = 9987;
+constexpr int kRepeat = 10497;
+constexpr int kClampToEdge = 33071;
+constexpr int kMirroredRepeat = 33648;
+
+// The shortest decimal that reads back to the same float, as a double: 0.8f is written 0.8, not
+// 0.800000011920929.
+double tidy(float value) {
+  char text[32];
+  auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  double out = 0.0;
+  std::from_chars(text, end, out);
+  return out;
+}
+
+Json tidy_array(std::initializer_list<float> values) {
+  Json a = Json::array();
+  for (float v : values) a.push_back(tidy(v));
+  return a;
+}
+
+Json quaternion_json(const glm::dquat& q) { return Json::array({q.x, q.y, q.z, q.w}); }
+
+// The rotation that turns a node's -Z axis (where glTF cameras look and lights shine) towards
+// `forward`, keeping its +Y axis as close to `up` as possible.
+glm::dquat rotation_towards(glm::dvec3 forward, glm::dvec3 up) {
+  const glm::dvec3 z = -glm::normalize(forward);
+  if (glm::length(glm::cross(up, z)) < 1e-9) up = std::abs(z.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 x = glm::normalize(glm::cross(up, z));
+  const glm::dvec3 y = glm::cross(z, x);
+  return glm::normalize(glm::quat_cast(glm::dmat3(x, y, z)));
+}
+
+bool is_identity(const glm::dquat& q) { return q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0; }
+
+std::string mime_of(const std::vector<unsigned char>& bytes) {
+  static const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  if (bytes.size() >= 8 && std::equal(png, png + 8, bytes.begin())) return "image/png";
+  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return "image/jpeg";
+  return "";
+}
+
+std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
+  std::string text = read_text_file(path);  // binary-safe; throws IoError
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+// Images glTF cannot hold (EXR, TIFF, HDR, ...) become 8-bit PNGs of the same channels (at most
+// four); values are clamped to [0, 1], with no change of transfer curve.
+std::vector<unsigned char> png_from_any_image(const std::filesystem::path& path) {
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) throw IoError(path.string() + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec spec = input->spec();
+  const int channels = std::min(spec.nchannels, 4);
+  std::vector<uint8_t> pixels(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
+                              static_cast<size_t>(channels));
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    throw IoError(path.string() + ": cannot read image: " + input->geterror());
+  return encode_png(spec.width, spec.height, channels, pixels);
+}
+
+class Writer {
+ public:
+  Writer(const Scene& scene, const ExportOptions& options) : scene_(scene), options_(options), buffer_(arrays_) {}
+
+  Export run(const std::filesystem::path& output) {
+    Export result;
+    const bool binary = output.extension() == ".glb";
+    Json scene_nodes = Json::array();
+    for (const auto& camera : scene_.cameras) scene_nodes.push_back(add_camera(camera));
+    for (const auto& light : scene_.lights) {
+      if (light.type == LightType::Environment) {
+        result.notes.push_back("environment light '" + light.name +
+                               "' has no glTF 2.0 counterpart (KHR_lights_punctual has point, spot and "
+                               "directional lights only); it is not written");
+        continue;
+      }
+      scene_nodes.push_back(add_light(light));
+    }
+    for (const auto& object : scene_.objects) scene_nodes.push_back(add_object(object));
+
+    Json root;
+    root["asset"] = Json{{"version", "2.0"}, {"generator", std::string("lamina ") + LAMINA_VERSION}};
+    std::vector<std::string> used(extensions_used_.begin(), extensions_used_.end());
+    if (!used.empty()) root["extensionsUsed"] = used;  // sorted by the set; never extensionsRequired
+    if (!lights_.empty()) root["extensions"] = Json{{"KHR_lights_punctual", Json{{"lights", lights_}}}};
+    root["scene"] = 0;
+    root["scenes"] =
+        Json::array({Json{{"name", std::filesystem::path(scene_.path).stem().string()}, {"nodes", scene_nodes}}});
+    for (const char* key :
+         {"nodes", "cameras", "meshes", "materials", "textures", "images", "samplers", "accessors", "bufferViews"})
+      if (auto it = arrays_.find(key); it != arrays_.end() && !it->empty()) root[key] = *it;
+    const auto& bin = buffer_.bytes();
+    const std::filesystem::path bin_name = output.stem().string() + ".bin";
+    if (!bin.empty()) {
+      Json buffer{{"byteLength", bin.size()}};
+      if (!binary) buffer["uri"] = bin_name.string();
+      root["buffers"] = Json::array({buffer});
+    }
+
+    std::string json = root.dump(binary ? -1 : 2);
+    if (binary) {
+      result.files.push_back({output, pack_glb(json, bin)});
+    } else {
+      json += "\n";
+      result.files.push_back({output, std::vector<unsigned char>(json.begin(), json.end())});
+      if (!bin.empty()) result.files.push_back({output.parent_path() / bin_name, bin});
+    }
+    result.materials = std::move(reports_);
+    return result;
+  }
+
+ private:
+  int push(const char* array, Json value) {
+    Json& a = arrays_[array];
+    if (a.is_null()) a = Json::array();
+    a.push_back(std::move(value));
+    return static_cast<int>(a.size()) - 1;
+  }
+
+  int add_camera(const Camera& camera) {
+    Json perspective{{"yfov", camera.yfov_deg * std::numbers::pi / 180.0}, {"znear", camera.znear}};
+    perspective["aspectRatio"] = camera.aspect;
+    if (camera.zfar) perspective["zfar"] = *camera.zfar;
+    int index = push("cameras", Json{{"name", camera.name}, {"type", "perspective"}, {"perspective", perspective}});
+    Json node{{"name", camera.name}, {"camera", index}};
+    node["rotation"] = quaternion_json(rotation_towards(camera.look_at - camera.position, camera.up));
+    node["translation"] = Json::array({camera.position.x, camera.position.y, camera.position.z});
+    return push("nodes", std::move(node));
+  }
+
+  // KHR_lights_punctual: point and spot intensity in candela, directional in lux; lights shine
+  // along the node's -Z.
+  int add_light(const Light& light) {
+    extensions_used_.insert("KHR_lights_punctual");
+    Json l{{"name", light.name}};
+    l["color"] = Json::array({light.color.r, light.color.g, light.color.b});
+    l["intensity"] = light.intensity;
+    Json node{{"name", light.name}};
+    switch (light.type) {
+      case LightType::Point: l["type"] = "point"; break;
+      case LightType::Directional: l["type"] = "directional"; break;
+      case LightType::Spot:
+        l["type"] = "spot";
+        l["spot"] = Json{{"innerConeAngle", light.inner_cone_deg * std::numbers::pi / 180.0},
+                         {"outerConeAngle", light.outer_cone_deg * std::numbers::pi / 180.0}};
+        break;
+      case LightType::Environment: break;  // filtered by the caller
+    }
+    if (light.range && light.type != LightType::Directional) l["range"] = *light.range;
+    lights_.push_back(std::move(l));
+    node["extensions"] = Json{{"KHR_lights_punctual", Json{{"light", lights_.size() - 1}}}};
+    if (light.type != LightType::Point) {
+      glm::dquat q = rotation_towards(light.direction, glm::dvec3(0, 1, 0));
+      if (!is_identity(q)) node["rotation"] = quaternion_json(q);
+    }
+    if (light.type != LightType::Directional && light.position != glm::dvec3(0.0))
+      node["translation"] = Json::array({light.position.x, light.position.y, light.position.z});
+    return push("nodes", std::move(node));
+  }
+
+  int add_object(const SceneObject& object) {
+    Json primitive{{"attributes", geometry(object)}, {"mode", 4}};
+    primitive["indices"] = indices_[geometry_key(object)];
+    primitive["material"] = material(object.material);
+    int mesh = push("meshes", Json{{"name", object.name}, {"primitives", Json::array({primitive})}});
+    Json node{{"name", object.name}, {"mesh", mesh}};
+    const Transform& t = object.transform;
+    if (!is_identity(t.rotation)) node["rotation"] = quaternion_json(t.rotation);
+    if (t.scale != glm::dvec3(1.0)) node["scale"] = Json::array({t.scale.x, t.scale.y, t.scale.z});
+    if (t.translation != glm::dvec3(0.0))
+      node["translation"] = Json::array({t.translation.x, t.translation.y, t.translation.z});
+    return push("nodes", std::move(node));
+  }
+
+  static std::string geometry_key(const SceneObject& o) {
+    switch (o.shape) {
+      case ShapeType::Sphere: return "sphere " + std::to_string(o.radius) + " " + std::to_string(o.segments);
+      case ShapeType::Plane: return "plane " + std::to_string(o.plane_size.x) + " " + std::to_string(o.plane_size.y);
+      case ShapeType::Box:
+        return "box " + std::to_string(o.box_size.x) + " " + std::to_string(o.box_size.y) + " " +
+               std::to_string(o.box_size.z);
+      case ShapeType::Torus:
+        return "torus " + std::to_string(o.major_radius) + " " + std::to_string(o.minor_radius) + " " +
+               std::to_string(o.segments);
+      case ShapeType::Mesh: return "mesh " + o.resolved_mesh_file.string();
+    }
+    return {};
+  }
+
+  // Vertex data is written once per distinct shape and shared by every primitive that uses it.
+  Json geometry(const SceneObject& object) {
+    const std::string key = geometry_key(object);
+    if (auto it = attributes_.find(key); it != attributes_.end()) return it->second;
+    const TriangleMesh mesh = object_mesh(object);
+    Json attributes;
+    attributes["POSITION"] = buffer_.add_vec3(mesh.positions, true);
+    attributes["NORMAL"] = buffer_.add_vec3(mesh.normals, false);
+    attributes["TANGENT"] = buffer_.add_vec4(mesh.tangents);
+    attributes["TEXCOORD_0"] = buffer_.add_vec2(mesh.uvs);
+    indices_[key] = buffer_.add_indices(mesh.indices, static_cast<uint32_t>(mesh.positions.size()));
+    attributes_[key] = attributes;
+    return attributes;
+  }
+
+  int material(const std::string& name) {
+    if (auto it = materials_.find(name); it != materials_.end()) return it->second;
+    const MaterialFileRef* file = nullptr;
+    const Material* m = scene_.find_material(name, &file);
+    if (!m || !file) throw std::logic_error("export_scene: the scene was not checked (material " + name + ")");
+
+    Fallback fallback = fit_fallback(compile(file->document, name), options_.fallback);
+    Json gltf_material{{"name", name}};
+    Json pbr;
+    const PbrParams& p = fallback.params;
+    pbr["baseColorFactor"] = tidy_array({p.base_color.r, p.base_color.g, p.base_color.b, 1.0f});
+    if (fallback.base_color) pbr["baseColorTexture"] = Json{{"index", baked_texture(*fallback.base_color)}};
+    pbr["metallicFactor"] = tidy(p.metallic);
+    pbr["roughnessFactor"] = tidy(p.roughness);
+    if (fallback.metallic_roughness)
+      pbr["metallicRoughnessTexture"] = Json{{"index", baked_texture(*fallback.metallic_roughness)}};
+    gltf_material["pbrMetallicRoughness"] = pbr;
+
+    Json extensions = Json::object();
+    if (fallback.uses_clearcoat) {
+      Json c{{"clearcoatFactor", tidy(p.clearcoat)}, {"clearcoatRoughnessFactor", tidy(p.clearcoat_roughness)}};
+      if (fallback.clearcoat) {
+        int texture = baked_texture(*fallback.clearcoat);
+        c["clearcoatTexture"] = Json{{"index", texture}};           // R
+        c["clearcoatRoughnessTexture"] = Json{{"index", texture}};  // G
+      }
+      extensions["KHR_materials_clearcoat"] = c;
+    }
+    if (fallback.uses_ior) extensions["KHR_materials_ior"] = Json{{"ior", tidy(p.ior)}};
+    if (fallback.uses_specular)
+      extensions["KHR_materials_specular"] =
+          Json{{"specularFactor", tidy(p.specular)},
+               {"specularColorFactor", tidy_array({p.specular_color.r, p.specular_color.g, p.specular_color.b})}};
+    extensions[kExtensionName] = layered_extension(*m, *file);
+    for (const auto& [key, value] : extensions.items()) extensions_used_.insert(key);
+    gltf_material["extensions"] = extensions;
+
+    int index = push("materials", std::move(gltf_material));
+    materials_[name] = index;
+    reports_.push_back({name, std::move(fallback)});
+    return index;
+  }
+
+  // The canonical material as lamina writes it, and a glTF texture per texture/image node.
+  Json layered_extension(const Material& m, const MaterialFileRef& file) {
+    Document single;
+    single.materials.push_back(m);
+    Json canonical = Json::parse(write_document(single))["materials"][0];
+    Json textures = Json::object();
+    const std::filesystem::path dir = file.resolved.parent_path();
+    for (const Node& node : m.nodes) {
+      if (node.type != "texture/image") continue;
+      const Value* f = node.find("file");
+      if (!f || !std::holds_alternative<std::string>(*f)) continue;
+      std::filesystem::path path(std::get<std::string>(*f));
+      if (path.is_relative()) path = dir / path;
+      int wrap = kRepeat;
+      if (const Value* w = node.find("wrap"); w && std::holds_alternative<std::string>(*w)) {
+        const auto& mode = std::get<std::string>(*w);
+        wrap = mode == "clamp" ? kClampToEdge : mode == "mirror" ? kMirroredRepeat : kRepeat;
+      }
+      textures[node.id] = Json{{"index", file_texture(path, wrap)}};
+    }
+    return Json{{"format", kFormatVersion}, {"material", canonical}, {"textures", textures}};
+  }
+
+  int sampler(int wrap) {
+    if (auto it = samplers_.find(wrap); it != samplers_.end()) return it->second;
+    int index = push(
+        "samplers", Json{{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", wrap}, {"wrapT", wrap}});
+    samplers_[wrap] = index;
+    return index;
+  }
+
+  int image(const std::vector<unsigned char>& bytes, const std::string& mime, const std::string& name) {
+    Json img{{"name", name}, {"mimeType", mime}};
+    img["bufferView"] = buffer_.add_image_bytes(bytes);
+    return push("images", std::move(img));
+  }
+
+  int file_texture(const std::filesystem::path& path, int wrap) {
+    const std::string key = path.lexically_normal().string() + "|" + std::to_string(wrap);
+    if (auto it = file_textures_.find(key); it != file_textures_.end()) return it->second;
+    std::vector<unsigned char> bytes = read_bytes(path);
+    std::string mime = mime_of(bytes);
+    if (mime.empty()) {
+      bytes = png_from_any_image(path);
+      mime = "image/png";
+    }
+    int source = image(bytes, mime, path.filename().string());
+    int texture = push("textures", Json{{"sampler", sampler(wrap)}, {"source", source}});
+    file_textures_[key] = texture;
+    return texture;
+  }
+
+  int baked_texture(const BakedImage& baked) {
+    std::vector<unsigned char> png = encode_png(baked.size, baked.size, baked.channels, baked.pixels);
+    int source = image(png, "image/png", "lamina_fallback_" + std::to_string(++baked_count_));
+    return push("textures", Json{{"sampler", sampler(kRepeat)}, {"source", source}});
+  }
+
+  const Scene& scene_;
+  const ExportOptions& options_;
+  Json arrays_ = Json::object();
+  BufferBuilder buffer_;
+  Json lights_ = Json::array();
+  std::set<std::string> extensions_used_;
+  std::map<std::string, Json> attributes_;
+  std::map<std::string, int> indices_, materials_, file_textures_;
+  std::map<int, int> samplers_;
+  std::vector<MaterialReport> reports_;
+  int baked_count_ = 0;
+};
+
+}  // namespace
+
+Export export_scene(const Scene& scene, const std::filesystem::path& output, const ExportOptions& options) {
+  return Writer(scene, options).run(output);
+}
+
+}  // namespace lamina::gltf

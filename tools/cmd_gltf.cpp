@@ -1,0 +1,125 @@
+// lamina gltf IN.json -o OUT.gltf|OUT.glb: a scene, or a material file as a sample sheet of
+// spheres, to glTF 2.0 with the LAMINA_materials_layered extension and a fitted PBR fallback.
+#include <cstdio>
+#include <iostream>
+
+#include "graph/gltf/export.h"
+#include "graph/json_read.h"
+#include "graph/scene/scene.h"
+#include "tools/commands.h"
+
+namespace lamina::cli {
+
+namespace {
+
+struct GltfOptions {
+  std::string input;
+  std::string output;
+  bool report = false;
+  int bake_size = 256;
+  int columns = 4;
+};
+
+std::string fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::string percent(float value) { return fixed(100.0 * double(value), 1) + "%"; }
+
+void print_report(const gltf::Export& result) {
+  std::cout << "fallback fit (relative albedo error at 0 and 80 degrees, of it at 0 degrees the share beyond any "
+               "glTF material where the lamina material reflects more than it receives, RMS residual over the "
+               "fit's direction pairs; worst over texture states):\n";
+  std::printf("  %-24s %6s %8s %9s %7s %7s %7s %7s  %s\n", "material", "states", "metallic", "roughness", "albedo0",
+              "beyond", "albedo80", "rms", "extensions");
+  for (const auto& m : result.materials) {
+    const auto& f = m.fallback;
+    std::string extensions;
+    if (f.uses_clearcoat) extensions += " clearcoat";
+    if (f.uses_ior) extensions += " ior";
+    if (f.uses_specular) extensions += " specular";
+    if (f.base_color || f.metallic_roughness || f.clearcoat) extensions += " +baked textures";
+    std::string states = std::to_string(f.states.size()) + (f.interpolated ? "~" : "");
+    std::string metallic = f.metallic_roughness ? "tex" : fixed(f.params.metallic, 2);
+    std::string roughness = f.metallic_roughness ? "tex" : fixed(f.params.roughness, 2);
+    std::printf("  %-24s %6s %8s %9s %7s %7s %8s %7s %s\n", m.name.c_str(), states.c_str(), metallic.c_str(),
+                roughness.c_str(), percent(f.worst.albedo_normal).c_str(), percent(f.worst.unreachable_normal).c_str(),
+                percent(f.worst.albedo_grazing).c_str(), percent(f.worst.rms).c_str(),
+                extensions.empty() ? " -" : extensions.c_str());
+  }
+  std::cout << std::flush;
+}
+
+int run_gltf(const GltfOptions& o) {
+  const std::filesystem::path output(o.output);
+  if (output.extension() != ".gltf" && output.extension() != ".glb") {
+    std::cerr << "lamina: -o: '" << o.output << "' must end in .gltf or .glb (the extension picks the container)\n";
+    return kExitInvalid;
+  }
+  if (o.bake_size < 1 || o.bake_size > 4096) {
+    std::cerr << "lamina: --bake-size: expected 1 to 4096 texels, found " << o.bake_size << "\n";
+    return kExitInvalid;
+  }
+  Scene scene;
+  Diagnostics diagnostics;
+  try {
+    const std::filesystem::path input(o.input);
+    if (looks_like_scene(read_text_file(input))) {
+      scene = read_scene_file(input, diagnostics);
+    } else {
+      CheckedFile checked = check_file(input);
+      diagnostics = checked.diagnostics;
+      if (checked.ok()) scene = sample_sheet(checked.document, input, o.columns);
+    }
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  }
+  for (const auto& d : diagnostics.errors()) std::cerr << format(d) << "\n";
+  for (const auto& d : diagnostics.warnings()) std::cerr << format(d) << "\n";
+  if (!diagnostics.ok()) return kExitInvalid;
+
+  gltf::ExportOptions options;
+  options.fallback.bake_size = o.bake_size;
+  gltf::Export result;
+  try {
+    result = gltf::export_scene(scene, output, options);
+  } catch (const IoError& e) {
+    std::cerr << "lamina: " << e.what() << "\n";
+    return kExitIo;
+  } catch (const Error& e) {
+    for (const auto& d : e.diagnostics()) std::cerr << format(d) << "\n";
+    return kExitInvalid;
+  }
+  for (const auto& note : result.notes) std::cerr << "lamina: note: " << note << "\n";
+  // The side files first, so that the .gltf never names a buffer that is not there.
+  for (auto it = result.files.rbegin(); it != result.files.rend(); ++it)
+    if (!write_file(it->path, std::string(it->bytes.begin(), it->bytes.end()))) return kExitIo;
+  if (o.report) print_report(result);
+  std::cout << "wrote " << output.string() << " (" << scene.objects.size() << " object"
+            << (scene.objects.size() == 1 ? "" : "s") << ", " << result.materials.size() << " material"
+            << (result.materials.size() == 1 ? "" : "s") << ")\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_gltf(CLI::App& app, Runner& runner) {
+  auto o = std::make_shared<GltfOptions>();
+  auto* cmd = app.add_subcommand(
+      "gltf", "Convert a scene, or a material file as a sheet of spheres, to glTF 2.0 with a fitted PBR fallback");
+  cmd->add_option("input", o->input, "a scene file, or a material file")->required();
+  cmd->add_option("-o,--output", o->output, "OUT.gltf (with OUT.bin next to it) or OUT.glb (self-contained)")
+      ->required();
+  cmd->add_flag("--report", o->report, "print each material's fallback fit and its errors");
+  cmd->add_option("--bake-size", o->bake_size, "texels per side of fallback textures baked from texture nodes")
+      ->capture_default_str();
+  cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->callback([o, &runner] { runner = [o] { return run_gltf(*o); }; });
+}
+
+}  // namespace lamina::cli
