@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build, then check, classify, measure, plot and compile to
-# GLSL every bundled example.
+# GLSL every bundled example, and export the showcase scene to glTF with its fallback fit report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
 bash tools/build.sh release
 lamina=build/release/lamina
 echo
-echo "== lamina validate examples/materials"
-$lamina validate examples/materials
+echo "== lamina validate examples/materials examples/scenes"
+$lamina validate examples/materials examples/scenes
 echo
 echo "== lamina classify examples/materials"
 $lamina classify examples/materials
@@ -45,3 +45,12 @@ for file in examples/materials/*.json; do
   done
   echo "$row  ($(wc -l <"$glsl/$name.330.frag") lines)"
 done
+echo
+gltf=build/gltf
+mkdir -p "$gltf"
+echo "== lamina gltf: examples/scenes/showcase.json to $gltf/showcase.glb, with the fitted fallback of every material"
+$lamina gltf examples/scenes/showcase.json -o "$gltf/showcase.glb" --report
+node tests/gltf/validate_gltf.mjs "$gltf/showcase.glb"
+echo
+echo "== lamina import: $gltf/showcase.glb back to lamina materials in $gltf/showcase_import/"
+$lamina import "$gltf/showcase.glb" -o "$gltf/showcase_import/materials.json" --force
