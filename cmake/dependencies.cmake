@@ -3,6 +3,8 @@ find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(OpenImageIO REQUIRED)
 find_package(glm REQUIRED)
+# Embree 3 (target `embree`, no namespace) for the path tracer; the CLI reports its version.
+find_package(embree 3 REQUIRED)
 # A shared library in Debian: link TinyGLTF::TinyGLTF and never define TINYGLTF_IMPLEMENTATION.
 find_package(TinyGLTF REQUIRED)
 

@@ -6,7 +6,8 @@
 namespace lamina {
 
 std::string format(const Diagnostic& d) {
-  std::string out = d.file + ":" + (d.pointer.empty() ? "/" : d.pointer) + ": ";
+  // RFC 6901: the empty pointer is the whole document ("/" would be the member named "").
+  std::string out = d.file + ":" + d.pointer + ": ";
   if (d.severity == Severity::Warning) out += "warning: ";
   out += d.message;
   if (!d.hint.empty()) out += " (" + d.hint + ")";

@@ -15,11 +15,14 @@ struct ClassifyOptions {
 
 int run_classify(const ClassifyOptions& o) {
   size_t agree = 0, tagged = 0;
-  int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path&, CheckedFile& checked) {
+  // With several files, each file's materials follow a line naming it.
+  const bool several = o.inputs.size() > 1 || std::filesystem::is_directory(o.inputs.front());
+  int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path& file, CheckedFile& checked) {
     if (!checked.ok()) {
       for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
       return false;
     }
+    if (several) std::cout << file.string() << ":\n";
     for (size_t i = 0; i < checked.document.materials.size(); ++i) {
       const Material& m = checked.document.materials[i];
       Classification c = classify(*checked.graphs[i]);

@@ -41,6 +41,7 @@ Checked check_input(const std::filesystem::path& file) {
     Scene scene = read_scene(text, file.string(), out.diagnostics);
     size_t materials = 0;
     for (const auto& f : scene.material_files) materials += f.document.materials.size();
+    out.materials = materials;
     out.summary = "scene: " + plural(scene.objects.size(), "object") + ", " + plural(materials, "material") + ", " +
                   plural(scene.lights.size(), "light") + ", " + plural(scene.cameras.size(), "camera");
     return out;
@@ -53,17 +54,11 @@ Checked check_input(const std::filesystem::path& file) {
 }
 
 int run_validate(const ValidateOptions& o) {
-  std::vector<std::filesystem::path> inputs;
-  try {
-    inputs = expand_inputs(o.inputs);
-  } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
-    return kExitIo;
-  }
-  int code = kExitOk;
+  Inputs inputs = expand_inputs(o.inputs);
+  int code = inputs.code;
   size_t files = 0, valid = 0, materials = 0, warnings = 0;
   nlohmann::json report = nlohmann::json::array();
-  for (const auto& file : inputs) {
+  for (const auto& file : inputs.files) {
     Checked checked;
     try {
       checked = check_input(file);
@@ -93,7 +88,7 @@ int run_validate(const ValidateOptions& o) {
       code = kExitInvalid;
     }
   }
-  if (code == kExitIo && files == 0) return code;
+  if (files == 0) return code;
   if (o.json) {
     std::cout << report.dump(2) << "\n";
   } else if (!o.quiet) {

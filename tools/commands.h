@@ -29,9 +29,15 @@ void add_glsl(CLI::App& app, Runner& runner);
 void add_gltf(CLI::App& app, Runner& runner);
 void add_import(CLI::App& app, Runner& runner);
 
-// Expands directories into the *.json files under them (sorted); files stay as given.
-// Throws IoError for a path that does not exist.
-std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>& inputs);
+// The files named on a command line, directories expanded into the *.json files under them
+// (sorted); files stay as given. A path that does not exist (exit 1) or a directory without any
+// .json file (exit 2) is reported on stderr as "lamina: ..." and skipped, so that one wrong
+// argument does not hide what the others hold; `code` is the exit code those problems call for.
+struct Inputs {
+  std::vector<std::filesystem::path> files;
+  int code = kExitOk;
+};
+Inputs expand_inputs(const std::vector<std::string>& inputs);
 
 // Checks every input file and hands each readable one to `visit`, which returns whether the
 // file passed. Returns the exit code: 1 if any input could not be read, else 2 if any file

@@ -6,8 +6,17 @@
 
 namespace lamina::cli {
 
-std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>& inputs) {
-  std::vector<std::filesystem::path> files;
+namespace {
+
+// An I/O problem outranks an invalid input, as in for_each_checked_file.
+void raise_code(int& code, int problem) {
+  if (code != kExitIo) code = problem;
+}
+
+}  // namespace
+
+Inputs expand_inputs(const std::vector<std::string>& inputs) {
+  Inputs out;
   for (const auto& input : inputs) {
     std::filesystem::path path(input);
     std::error_code ec;
@@ -15,29 +24,30 @@ std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>&
       std::vector<std::filesystem::path> found;
       for (const auto& entry : std::filesystem::recursive_directory_iterator(path, ec))
         if (entry.is_regular_file() && entry.path().extension() == ".json") found.push_back(entry.path());
-      if (ec) throw IoError(input + ": cannot list directory: " + ec.message());
+      if (ec) {
+        std::cerr << "lamina: " << input << ": cannot list directory: " << ec.message() << "\n";
+        raise_code(out.code, kExitIo);
+      } else if (found.empty()) {
+        std::cerr << "lamina: " << input << ": no .json file in this directory, nothing to check\n";
+        raise_code(out.code, kExitInvalid);
+      }
       std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
+      out.files.insert(out.files.end(), found.begin(), found.end());
     } else if (std::filesystem::exists(path, ec)) {
-      files.push_back(path);
+      out.files.push_back(path);
     } else {
-      throw IoError(input + ": no such file or directory");
+      std::cerr << "lamina: " << input << ": no such file or directory\n";
+      raise_code(out.code, kExitIo);
     }
   }
-  return files;
+  return out;
 }
 
 int for_each_checked_file(const std::vector<std::string>& inputs,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit) {
-  std::vector<std::filesystem::path> files;
-  try {
-    files = expand_inputs(inputs);
-  } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
-    return kExitIo;
-  }
-  int code = kExitOk;
-  for (const auto& file : files) {
+  Inputs expanded = expand_inputs(inputs);
+  int code = expanded.code;
+  for (const auto& file : expanded.files) {
     CheckedFile checked;
     try {
       checked = check_file(file);

@@ -1,11 +1,45 @@
-#include <iostream>
+#include <embree3/rtcore_config.h>
 
+#include <OpenImageIO/oiioversion.h>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "graph/diagnostics.h"
 #include "tools/commands.h"
+
+namespace {
+
+// What --version prints: lamina's version and the libraries this build was compiled against.
+std::string version_text() {
+  return std::string("lamina ") + LAMINA_VERSION +
+         "\nbuilt with Embree " RTC_VERSION_STRING ", OpenImageIO " OIIO_VERSION_STRING ", nlohmann-json " +
+         std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." + std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." +
+         std::to_string(NLOHMANN_JSON_VERSION_PATCH) + ", CLI11 " CLI11_VERSION;
+}
+
+// CLI11 reports a word that names no command as "A subcommand is required"; name it instead,
+// with the closest command.
+bool unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  std::string word = argv[1];
+  if (std::find(names.begin(), names.end(), word) != names.end()) return false;
+  std::string hint = lamina::closest_match(word, names);
+  std::cerr << "lamina: unknown command '" << word << "'" << (hint.empty() ? "" : "; did you mean '" + hint + "'?")
+            << "\ncommands:";
+  for (const auto& n : names) std::cerr << " " << n;
+  std::cerr << "\nRun lamina --help for more information.\n";
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lamina::cli;
   CLI::App app{"lamina: physically plausible layered materials", "lamina"};
-  app.set_version_flag("--version", std::string("lamina ") + LAMINA_VERSION);
+  app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
   Runner runner;
   add_validate(app, runner);
@@ -18,6 +52,7 @@ int main(int argc, char** argv) {
   add_glsl(app, runner);
   add_gltf(app, runner);
   add_import(app, runner);
+  if (unknown_command(app, argc, argv)) return kExitInvalid;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

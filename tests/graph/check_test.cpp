@@ -111,7 +111,7 @@ TEST_CASE("unused nodes and a class tag that disagrees with the structure are wa
   CHECK(checked.diagnostics.warnings()[1].message.find("a) glossy paint") != std::string::npos);
 }
 
-TEST_CASE("a missing texture file names the path searched; an existing one passes") {
+TEST_CASE("a missing texture file names the path searched, and an existing one passes") {
   test::TempDir dir;
   auto material = dir.path() / "m.json";
   auto write = [&](const std::string& file) {

@@ -150,7 +150,7 @@ TEST_CASE("glTF export: vertex data is valid glTF: bounds, unit normals, unit ta
   }
 }
 
-TEST_CASE("glTF export: .gltf writes its buffer next to it; output is byte-for-byte deterministic") {
+TEST_CASE("glTF export: .gltf writes its buffer next to it, and output is byte-for-byte deterministic") {
   Scene scene = sheet_of(test::source_dir() / "examples/materials/patina_map_copper.json");
   gltf::Export a = gltf::export_scene(scene, "dir/patina.gltf", quick());
   gltf::Export b = gltf::export_scene(scene, "dir/patina.gltf", quick());
