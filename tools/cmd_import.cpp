@@ -80,8 +80,9 @@ void add_import(CLI::App& app, Runner& runner) {
   cmd->add_flag("--force", o->force, "replace OUT and textures that already exist");
   cmd->footer(
       "Materials with LAMINA_materials_layered come back exactly; others are approximated from core "
-      "metallic-roughness, KHR_materials_ior, _specular and _clearcoat (the approximations are printed as notes). "
-      "Exit 0 written, 2 invalid glTF or existing output (nothing written), 1 I/O error.");
+      "metallic-roughness, KHR_materials_ior, _specular and _clearcoat (the approximations are printed as notes); "
+      "object labels that lamina gltf added are left out. Exit 0 written, 2 invalid glTF, no material to import or "
+      "existing output (nothing written), 1 I/O error.");
   cmd->callback([o, &runner] { runner = [o] { return run_import(*o); }; });
 }
 

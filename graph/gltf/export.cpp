@@ -5,13 +5,17 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
 
 #include "graph/compile.h"
 #include "graph/gltf/gltf_buffer.h"
+#include "graph/gltf/label_image.h"
 #include "graph/gltf/png_encode.h"
+#include "graph/gltf/uri.h"
 #include "graph/json_read.h"
 #include "graph/json_write.h"
 
@@ -25,6 +29,8 @@ constexpr int kLinearMipmapLinear = 9987;
 constexpr int kRepeat = 10497;
 constexpr int kClampToEdge = 33071;
 constexpr int kMirroredRepeat = 33648;
+
+constexpr const char* kUnlit = "KHR_materials_unlit";
 
 // The shortest decimal that reads back to the same float, as a double: 0.8f is written 0.8, not
 // 0.800000011920929.
@@ -55,6 +61,26 @@ glm::dquat rotation_towards(glm::dvec3 forward, glm::dvec3 up) {
 }
 
 bool is_identity(const glm::dquat& q) { return q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0; }
+
+// Labels (scene objects' "label"): text height and the gap above it as fractions of the object's
+// width seen from the camera, and the widest a label may be, so that neighbours in a grid keep
+// apart.
+constexpr double kLabelHeight = 0.14;
+constexpr double kLabelGap = 0.02;
+constexpr double kLabelMaxWidth = 1.2;
+
+struct Bounds {
+  glm::dvec3 lo{std::numeric_limits<double>::max()}, hi{std::numeric_limits<double>::lowest()};
+  void add(glm::dvec3 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+};
+
+glm::dmat4 object_matrix(const Transform& t) {
+  return glm::translate(glm::dmat4(1.0), t.translation) * glm::mat4_cast(t.rotation) *
+         glm::scale(glm::dmat4(1.0), t.scale);
+}
 
 std::string mime_of(const std::vector<unsigned char>& bytes) {
   static const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
@@ -101,6 +127,8 @@ class Writer {
       scene_nodes.push_back(add_light(light));
     }
     for (const auto& object : scene_.objects) scene_nodes.push_back(add_object(object));
+    for (const auto& object : scene_.objects)
+      if (!object.label.empty()) scene_nodes.push_back(add_label(object));
 
     Json root;
     root["asset"] = Json{{"version", "2.0"}, {"generator", std::string("lamina ") + LAMINA_VERSION}};
@@ -117,7 +145,7 @@ class Writer {
     const std::filesystem::path bin_name = output.stem().string() + ".bin";
     if (!bin.empty()) {
       Json buffer{{"byteLength", bin.size()}};
-      if (!binary) buffer["uri"] = bin_name.string();
+      if (!binary) buffer["uri"] = uri_encode(bin_name.string());
       root["buffers"] = Json::array({buffer});
     }
 
@@ -196,6 +224,87 @@ class Writer {
     return push("nodes", std::move(node));
   }
 
+  // The object's label: a quad under it, turned about y to face the first camera (all labels
+  // parallel), showing the text with KHR_materials_unlit so that no light changes it. Its material
+  // says in its extras that it is a label, so that lamina import leaves it out.
+  int add_label(const SceneObject& object) {
+    double facing = 0.0;  // angle about y from +z
+    if (!scene_.cameras.empty()) {
+      const glm::dvec3 forward = scene_.cameras.front().look_at - scene_.cameras.front().position;
+      if (std::hypot(forward.x, forward.z) > 1e-9) facing = std::atan2(-forward.x, -forward.z);
+    }
+    // The label's axes in the scene: across (`right`), up, and towards the camera (`front`).
+    const glm::dvec3 right(std::cos(facing), 0.0, -std::sin(facing)), front(std::sin(facing), 0.0, std::cos(facing));
+    // The object's extent along these axes, from its vertices in the scene (a bounding box seen
+    // from a corner would be wider than the object).
+    const glm::dmat4 to_world = object_matrix(object.transform);
+    Bounds seen;  // x across, y up, z towards the camera
+    for (const glm::vec3& p : label_positions(object)) {
+      const glm::dvec3 q(to_world * glm::dvec4(glm::dvec3(p), 1.0));
+      seen.add(glm::dvec3(glm::dot(q, right), q.y, glm::dot(q, front)));
+    }
+    const double width_seen = std::max(seen.hi.x - seen.lo.x, 1e-6);
+
+    const LabelImage image = render_label(object.label);
+    double height = kLabelHeight * width_seen;
+    double width = height * image.content_width / image.content_height;
+    if (width > kLabelMaxWidth * width_seen) {
+      height *= kLabelMaxWidth * width_seen / width;
+      width = kLabelMaxWidth * width_seen;
+    }
+
+    const int source = image_from_pixels(image.width, image.height, 4, image.rgba, object.name + " label");
+    const int texture = push("textures", Json{{"sampler", sampler(kClampToEdge)}, {"source", source}});
+    Json material{{"name", object.name + " label"}};
+    material["pbrMetallicRoughness"] =
+        Json{{"baseColorTexture", Json{{"index", texture}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}};
+    material["alphaMode"] = "BLEND";  // smooth glyph edges; labels do not overlap each other
+    material["extensions"] = Json{{kUnlit, Json::object()}};
+    material["extras"] = Json{{kLabelExtra, object.label}};
+    extensions_used_.insert(kUnlit);
+    const int material_index = push("materials", std::move(material));
+
+    // The quad shows the image's content: the top-left part of the power-of-two texture.
+    Json attributes = label_quad();
+    const float u = static_cast<float>(image.content_width) / static_cast<float>(image.width);
+    const float v = static_cast<float>(image.content_height) / static_cast<float>(image.height);
+    const std::vector<glm::vec2> uvs{{0.0f, 0.0f}, {u, 0.0f}, {u, v}, {0.0f, v}};
+    attributes["TEXCOORD_0"] = buffer_.add_vec2(uvs);
+    Json primitive{{"attributes", attributes}, {"indices", label_quad_indices_}, {"material", material_index}};
+    primitive["mode"] = 4;
+    const int mesh = push("meshes", Json{{"name", object.name + " label"}, {"primitives", Json::array({primitive})}});
+    Json node{{"name", object.name + " label"}, {"mesh", mesh}};
+    if (facing != 0.0) node["rotation"] = quaternion_json(glm::angleAxis(facing, glm::dvec3(0.0, 1.0, 0.0)));
+    node["scale"] = Json::array({width, height, 1.0});
+    // Centred under the object as the camera sees it, its top a little below the object's lowest point.
+    const glm::dvec3 at = right * (0.5 * (seen.lo.x + seen.hi.x)) + front * (0.5 * (seen.lo.z + seen.hi.z));
+    node["translation"] = Json::array({at.x, seen.lo.y - kLabelGap * width_seen, at.z});
+    return push("nodes", std::move(node));
+  }
+
+  // The vertices of a labelled object's shape (kept by geometry(), or read again when an object
+  // without a label wrote the shape).
+  const std::vector<glm::vec3>& label_positions(const SceneObject& object) {
+    const std::string key = geometry_key(object);
+    auto it = positions_.find(key);
+    if (it == positions_.end()) it = positions_.emplace(key, object_mesh(object).positions).first;
+    return it->second;
+  }
+
+  // A unit quad facing +z, its top edge centred on the origin ([-0.5, 0.5] x [-1, 0]); positions,
+  // normals and indices are written once and shared by every label, the uvs are each label's.
+  Json label_quad() {
+    if (!label_quad_.is_null()) return label_quad_;
+    const std::vector<glm::vec3> positions{
+        {-0.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}, {0.5f, -1.0f, 0.0f}, {-0.5f, -1.0f, 0.0f}};
+    const std::vector<glm::vec3> normals(4, glm::vec3(0.0f, 0.0f, 1.0f));
+    const std::vector<uint32_t> indices{0, 3, 2, 0, 2, 1};  // counter-clockwise seen from +z
+    label_quad_["POSITION"] = buffer_.add_vec3(positions, true);
+    label_quad_["NORMAL"] = buffer_.add_vec3(normals, false);
+    label_quad_indices_ = buffer_.add_indices(indices, 4);
+    return label_quad_;
+  }
+
   static std::string geometry_key(const SceneObject& o) {
     switch (o.shape) {
       case ShapeType::Sphere: return "sphere " + std::to_string(o.radius) + " " + std::to_string(o.segments);
@@ -215,7 +324,7 @@ class Writer {
   Json geometry(const SceneObject& object) {
     const std::string key = geometry_key(object);
     if (auto it = attributes_.find(key); it != attributes_.end()) return it->second;
-    const TriangleMesh mesh = object_mesh(object);
+    TriangleMesh mesh = object_mesh(object);
     Json attributes;
     attributes["POSITION"] = buffer_.add_vec3(mesh.positions, true);
     attributes["NORMAL"] = buffer_.add_vec3(mesh.normals, false);
@@ -223,6 +332,7 @@ class Writer {
     attributes["TEXCOORD_0"] = buffer_.add_vec2(mesh.uvs);
     indices_[key] = buffer_.add_indices(mesh.indices, static_cast<uint32_t>(mesh.positions.size()));
     attributes_[key] = attributes;
+    if (!object.label.empty()) positions_[key] = std::move(mesh.positions);
     return attributes;
   }
 
@@ -306,6 +416,11 @@ class Writer {
     return push("images", std::move(img));
   }
 
+  int image_from_pixels(int width, int height, int channels, const std::vector<uint8_t>& pixels,
+                        const std::string& name) {
+    return image(encode_png(width, height, channels, pixels), "image/png", name);
+  }
+
   int file_texture(const std::filesystem::path& path, int wrap) {
     const std::string key = path.lexically_normal().string() + "|" + std::to_string(wrap);
     if (auto it = file_textures_.find(key); it != file_textures_.end()) return it->second;
@@ -322,8 +437,8 @@ class Writer {
   }
 
   int baked_texture(const BakedImage& baked) {
-    std::vector<unsigned char> png = encode_png(baked.size, baked.size, baked.channels, baked.pixels);
-    int source = image(png, "image/png", "lamina_fallback_" + std::to_string(++baked_count_));
+    int source = image_from_pixels(baked.size, baked.size, baked.channels, baked.pixels,
+                                   "lamina_fallback_" + std::to_string(++baked_count_));
     return push("textures", Json{{"sampler", sampler(kRepeat)}, {"source", source}});
   }
 
@@ -334,6 +449,9 @@ class Writer {
   Json lights_ = Json::array();
   std::set<std::string> extensions_used_;
   std::map<std::string, Json> attributes_;
+  std::map<std::string, std::vector<glm::vec3>> positions_;  // of labelled objects' shapes, in their own space
+  Json label_quad_;
+  int label_quad_indices_ = -1;
   std::map<std::string, int> indices_, materials_, file_textures_;
   std::map<int, int> samplers_;
   std::vector<MaterialReport> reports_;

@@ -13,6 +13,9 @@
 namespace lamina::gltf {
 
 inline constexpr const char* kExtensionName = "LAMINA_materials_layered";
+// The key of a label material's "extras" (its value is the label's text): materials that only show
+// an object's label, which lamina import leaves out.
+inline constexpr const char* kLabelExtra = "lamina_label";
 
 struct ExportOptions {
   FallbackOptions fallback;
@@ -35,9 +38,13 @@ struct Export {
 };
 
 // Exports a checked scene (read_scene with no errors). `output` ending in .glb gives one binary
-// file with everything embedded; .gltf gives the JSON and OUT.bin next to it (images included).
+// file with everything embedded; .gltf gives the JSON and OUT.bin next to it (images included; the
+// buffer's URI percent-encoded). Objects with a label get a second node after all objects: an
+// unlit (KHR_materials_unlit), alpha-blended quad under the object, facing the first camera, its
+// text rendered to a texture; its material's extras hold kLabelExtra and it is not in `materials`.
 // Deterministic: the same scene gives the same bytes. Throws IoError when a mesh or texture file
-// cannot be read, lamina::Error when a material no longer checks.
+// cannot be read or the label font is missing, lamina::Error when a material or mesh file no
+// longer checks.
 Export export_scene(const Scene& scene, const std::filesystem::path& output, const ExportOptions& options = {});
 
 }  // namespace lamina::gltf

@@ -12,6 +12,7 @@
 #include "graph/cpu/image.h"
 #include "graph/gltf/export.h"
 #include "graph/gltf/pbr_to_layers.h"
+#include "graph/gltf/uri.h"
 #include "graph/json_read.h"
 #include "graph/json_write.h"
 #include "graph/load.h"
@@ -128,15 +129,42 @@ class Importer {
 
   ImportResult run() {
     if (!load_model()) return std::move(result_);
+    // Label materials (lamina's export marks them) show text, not a surface: they are left out,
+    // and so are the extensions only they use.
+    std::set<std::string> label_extensions, material_extensions;
+    size_t labels = 0;
+    for (const auto& gm : model_.materials) {
+      const bool label = is_label(gm);
+      labels += label;
+      const Json extensions = parse_object(gm.extensions_json_string);
+      for (const auto& [name, value] : extensions.items())
+        (label ? label_extensions : material_extensions).insert(name);
+    }
     for (size_t i = 0; i < model_.extensionsUsed.size(); ++i) {
       const std::string& name = model_.extensionsUsed[i];
       if (kNotMaterialExtensions.count(name))
         result_.notes.push_back("extension '" + name + "' holds no material data; skipped");
+      else if (label_extensions.count(name) && !material_extensions.count(name))
+        result_.notes.push_back("extension '" + name + "' is used only by object labels; skipped");
       else if (!kReadExtensions.count(name))
         diagnostics_.warning(file_, "/extensionsUsed/" + std::to_string(i),
                              "extension '" + name + "' is not read by lamina import; it is ignored");
     }
-    for (size_t i = 0; i < model_.materials.size(); ++i) import_material(i);
+    for (size_t i = 0; i < model_.materials.size(); ++i)
+      if (!is_label(model_.materials[i])) import_material(i);
+    if (labels > 0)
+      result_.notes.push_back(std::to_string(labels) + " object label material" + (labels == 1 ? " was" : "s were") +
+                              " left out");
+    // An empty material file is not a valid one: say so rather than write it.
+    if (diagnostics_.ok() && result_.document.materials.empty()) {
+      if (model_.materials.empty())
+        diagnostics_.error(file_, "", "the glTF file has no materials: there is nothing to import",
+                           "lamina import converts materials; meshes, nodes, cameras and lights are not imported");
+      else
+        diagnostics_.error(file_, "/materials",
+                           "the glTF file's materials are all object labels (extras \"" + std::string(kLabelExtra) +
+                               "\"): there is nothing to import");
+    }
     check_document();
     return std::move(result_);
   }
@@ -180,6 +208,17 @@ class Importer {
       }
       start = end + 1;
     }
+  }
+
+  // tinygltf keeps the original text of extensions and extras; it parsed, so it parses again.
+  static Json parse_object(const std::string& text) {
+    if (text.empty()) return Json::object();
+    Json j = Json::parse(text, nullptr, false);
+    return j.is_object() ? j : Json::object();
+  }
+
+  static bool is_label(const tinygltf::Material& gm) {
+    return parse_object(gm.extras_json_string).contains(kLabelExtra);
   }
 
   std::string unique_material_name(const std::string& wanted, size_t index) {
@@ -284,7 +323,9 @@ class Importer {
       }
     }
     if (!ok) return;
-    const std::string wanted_name = model_.materials[index].name.empty() ? m.name : model_.materials[index].name;
+    // The graph's own name first: it is what the material file called it (the glTF name is a copy
+    // a tool may have changed).
+    const std::string wanted_name = m.name.empty() ? model_.materials[index].name : m.name;
     m.name = unique_material_name(wanted_name, index);
     add(std::move(m), Origin{index, true});
   }
@@ -350,7 +391,7 @@ class Importer {
   std::string default_image_name(size_t source) const {
     const tinygltf::Image& image = model_.images[source];
     if (!image.name.empty()) return image.name;
-    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return image.uri;
+    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return uri_decode(image.uri);
     return "image_" + std::to_string(source) + extension_for(image.image);
   }
 

@@ -28,6 +28,7 @@ Scene sample_sheet(const Document& materials, const std::filesystem::path& mater
     SceneObject o;
     o.name = materials.materials[i].name;
     o.material = materials.materials[i].name;
+    o.label = materials.materials[i].name;
     o.shape = ShapeType::Sphere;
     o.radius = 1.0;
     o.transform.translation = glm::dvec3(left + kSpacing * static_cast<double>(i % per_row),

@@ -79,6 +79,7 @@ struct SceneObject {
   std::filesystem::path resolved_mesh_file;  // mesh: resolved against the scene's directory
   Transform transform;
   std::string material;  // a material name from one of the scene's material files
+  std::string label;     // shown under the object by the glTF export; empty: none
 };
 
 struct MaterialFileRef {
@@ -112,7 +113,7 @@ Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostic
 bool looks_like_scene(std::string_view text);
 
 // A sample sheet for a material file: one unit sphere per material in a grid (rows of up to
-// `columns`), named after the materials, a camera that frames them all and a key light.
+// `columns`), named and labelled after the materials, a camera that frames them all and a key light.
 Scene sample_sheet(const Document& materials, const std::filesystem::path& material_file, int columns = 4);
 
 // The mesh of an object in its own space (the transform is not applied): a built-in primitive

@@ -80,7 +80,12 @@ std::vector<SceneField> object_common() {
                      .required = true},
           SceneField{.name = "transform",
                      .type = SceneFieldType::Object,
-                     .doc = "placement of the object: scale, then rotation, then translation (glTF's order)"}};
+                     .doc = "placement of the object: scale, then rotation, then translation (glTF's order)"},
+          SceneField{.name = "label",
+                     .type = SceneFieldType::Text,
+                     .doc = "text shown under the object in glTF viewers, on an unlit quad facing the first camera; "
+                            "none: no label",
+                     .max_length = kMaxLabelLength}};
 }
 
 std::vector<SceneField> with(std::vector<SceneField> fields, const std::vector<SceneField>& more) {
@@ -103,7 +108,7 @@ size_t SceneField::components() const {
 std::string SceneField::range_text(const std::string& label) const {
   std::string text =
       number_text(lo) + (lo_open ? " < " : " <= ") + label + (hi_open ? " < " : " <= ") + number_text(hi);
-  if (nonzero) text += ", not 0";
+  if (min_magnitude > 0.0) text += ", |" + label + "| >= " + number_text(min_magnitude);
   return text;
 }
 
@@ -239,8 +244,9 @@ const std::vector<SceneField>& transform_fields() {
                  .doc = "Euler angles [degrees] about x, then y, then z (fixed axes: R = Rz Ry Rx); not with rotation"},
       SceneField{.name = "scale",
                  .type = SceneFieldType::Vec3,
-                 .doc = "scale along the object's axes; negative mirrors, 0 is not allowed",
-                 .nonzero = true,
+                 .doc = "scale along the object's axes; negative mirrors; each magnitude at least 1e-6 and at "
+                        "most 1e6 times the smallest, so that the transform stays invertible in single precision",
+                 .min_magnitude = kMinScale,
                  .default_json = "[1.0, 1.0, 1.0]"},
   };
   return fields;

@@ -25,6 +25,11 @@ enum class SceneFieldType {
 // Scene coordinates, sizes and intensities beyond this are surely a mistake, and would overflow
 // or lose all precision in the single-precision meshes and renderers downstream.
 inline constexpr double kSceneNumberLimit = 1e9;
+// The smallest scale magnitude, and the largest ratio of two scale components: a float has 24 bits
+// (about 7 digits), so beyond these a transform's inverse (which gives the normals) is lost in
+// rounding, or its determinant underflows.
+inline constexpr double kMinScale = 1e-6;
+inline constexpr double kMaxScaleRatio = 1e6;
 
 struct SceneField {
   std::string name;
@@ -34,7 +39,10 @@ struct SceneField {
   // Bounds of the number or of each component; open bounds exclude the value itself.
   double lo = -kSceneNumberLimit, hi = kSceneNumberLimit;
   bool lo_open = false, hi_open = false;
-  bool nonzero = false;  // each component must differ from 0 (scale)
+  // Each component's magnitude must be at least this (0: no such bound). The scale uses it to keep
+  // transforms invertible in the single precision viewers compute in.
+  double min_magnitude = 0.0;
+  size_t max_length = 0;  // Text: at most this many characters (Unicode code points); 0: any
   std::vector<std::string> choices;
   std::string default_json;  // the default as JSON text, "" when none
 
@@ -42,6 +50,8 @@ struct SceneField {
   // "0.0 < radius <= 1000000000.0" style text for messages.
   std::string range_text(const std::string& label) const;
 };
+
+inline constexpr size_t kMaxLabelLength = 64;
 
 inline constexpr int kMinSegments = 4;
 inline constexpr int kMaxSegments = 1024;

@@ -176,7 +176,7 @@ class SceneReader {
     }
     bool below = f.lo_open ? !(v > f.lo) : v < f.lo;
     bool above = f.hi_open ? !(v < f.hi) : v > f.hi;
-    if (below || above || (f.nonzero && v == 0.0)) {
+    if (below || above || std::abs(v) < f.min_magnitude) {
       error(pointer, label + " = " + number_text(v) + " is out of range: expected " + f.range_text(label), f.doc);
       return false;
     }
@@ -227,11 +227,21 @@ class SceneReader {
         if (ok) out.numbers[f.name] = v;
         return;
       }
-      case SceneFieldType::Text:
+      case SceneFieldType::Text: {
         if (!j.is_string()) return expected("a string");
-        if (j.get<std::string>().empty()) return error(pointer, "expected a non-empty string", f.doc);
-        out.texts[f.name] = j.get<std::string>();
+        const auto text = j.get<std::string>();
+        if (text.empty()) return error(pointer, "expected a non-empty string", f.doc);
+        // Code points: every byte but UTF-8's continuation bytes starts one.
+        const auto length = static_cast<size_t>(std::count_if(
+            text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xc0) != 0x80; }));
+        if (f.max_length > 0 && length > f.max_length)
+          return error(
+              pointer,
+              f.name + " has " + std::to_string(length) + " characters, more than " + std::to_string(f.max_length),
+              f.doc);
+        out.texts[f.name] = text;
         return;
+      }
       case SceneFieldType::Choice: {
         if (!j.is_string()) return expected("one of " + join_alternatives(f.choices));
         auto text = j.get<std::string>();
@@ -407,6 +417,19 @@ class SceneReader {
     Transform t;
     t.translation = v.vec3("translation", t.translation);
     t.scale = v.vec3("scale", t.scale);
+    const glm::dvec3 magnitude = glm::abs(t.scale);
+    const double smallest = glm::min(magnitude.x, glm::min(magnitude.y, magnitude.z));
+    const double largest = glm::max(magnitude.x, glm::max(magnitude.y, magnitude.z));
+    if (largest > kMaxScaleRatio * smallest) {
+      // The scale's magnitudes are the singular values of the linear part (the rotation keeps
+      // them), so their ratio is its condition number.
+      error(pointer + "/scale",
+            "the transform is practically singular: its largest scale is " + number_text(largest / smallest) +
+                " times its smallest, more than " + number_text(kMaxScaleRatio) +
+                " (single precision cannot invert it, so normals would be lost)",
+            "flatten a shape by its own size parameters rather than by the scale");
+      return std::nullopt;
+    }
     if (v.has("rotation") && v.has("rotation_deg")) {
       error(pointer + "/rotation_deg", "give only one of \"rotation\" or \"rotation_deg\"",
             "they describe the same rotation");
@@ -452,6 +475,7 @@ class SceneReader {
     o.name = v.text("name");
     o.shape = s;
     o.material = v.text("material");
+    o.label = v.text("label");
     o.radius = v.number("radius", o.radius);
     o.major_radius = v.number("major_radius", o.major_radius);
     o.minor_radius = v.number("minor_radius", o.minor_radius);
@@ -489,14 +513,33 @@ class SceneReader {
             "paths are relative to the scene file's directory");
       return false;
     }
-    // Loaded now so that a file without triangles is reported here, not when exporting.
+    // Loaded now so that a mesh file's problems are reported here, not when exporting; once per
+    // file however many objects use it.
+    auto [known, first_use] = mesh_files_.emplace(o.resolved_mesh_file, MeshFileUse{true, pointer});
+    if (!first_use) {
+      if (!known->second.ok)
+        error(pointer, "the mesh file " + o.resolved_mesh_file.string() + " has errors",
+              "they are reported where the scene first uses it, " + known->second.first_pointer);
+      return known->second.ok;
+    }
     try {
       object_mesh(o);
     } catch (const IoError& e) {
+      known->second.ok = false;
       error(pointer, e.what());
-      return false;
+    } catch (const Error& e) {
+      // Problems of a value in the mesh file are reported at that value, naming the object that
+      // uses the file; problems of the file as a whole at the object's "file".
+      known->second.ok = false;
+      for (const auto& d : e.diagnostics()) {
+        if (d.pointer.empty())
+          error(pointer, d.file + ": " + d.message, d.hint);
+        else
+          diag_.error(d.file, d.pointer, d.message,
+                      (d.hint.empty() ? "" : d.hint + "; ") + "the mesh of " + file_ + ":" + pointer);
+      }
     }
-    return true;
+    return known->second.ok;
   }
 
   void check_material_names(const Scene& scene, const std::vector<std::string>& pointers) {
@@ -519,6 +562,11 @@ class SceneReader {
   std::filesystem::path dir_;
   Diagnostics& diag_;
   bool materials_incomplete_ = false;
+  struct MeshFileUse {
+    bool ok = true;             // whether it loaded
+    std::string first_pointer;  // the first object's "file" that named it
+  };
+  std::map<std::filesystem::path, MeshFileUse> mesh_files_;  // by resolved path
 };
 
 }  // namespace

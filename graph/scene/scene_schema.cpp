@@ -15,7 +15,8 @@ Json number_schema(const SceneField& f) {
   Json n{{"type", f.type == SceneFieldType::Integer ? "integer" : "number"}};
   n[f.lo_open ? "exclusiveMinimum" : "minimum"] = f.lo;
   n[f.hi_open ? "exclusiveMaximum" : "maximum"] = f.hi;
-  if (f.nonzero) n["not"] = Json{{"const", 0}};
+  if (f.min_magnitude > 0.0)
+    n["not"] = Json{{"exclusiveMinimum", -f.min_magnitude}, {"exclusiveMaximum", f.min_magnitude}};
   return n;
 }
 
@@ -31,7 +32,10 @@ Json field_schema(const SceneField& f) {
       s = Json{
           {"type", "array"}, {"items", number_schema(f)}, {"minItems", f.components()}, {"maxItems", f.components()}};
       break;
-    case SceneFieldType::Text: s = Json{{"type", "string"}, {"minLength", 1}}; break;
+    case SceneFieldType::Text:
+      s = Json{{"type", "string"}, {"minLength", 1}};
+      if (f.max_length > 0) s["maxLength"] = f.max_length;
+      break;
     case SceneFieldType::Choice: s = Json{{"enum", f.choices}}; break;
     case SceneFieldType::Object: s = def_ref("transform"); break;
   }

@@ -2,6 +2,8 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <fstream>
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -83,9 +85,11 @@ TEST_CASE("glTF export: a material file becomes a sheet of spheres with the exac
     CHECK_FALSE(j.contains("extensionsRequired"));
     const auto used = j["extensionsUsed"].get<std::vector<std::string>>();
     CHECK(std::find(used.begin(), used.end(), gltf::kExtensionName) != used.end());
+    // Each material's sphere and, after all spheres, each sphere's label (a quad and its material).
     const size_t count = checked.document.materials.size();
-    CHECK(j["meshes"].size() == count);
-    CHECK(j["materials"].size() == count);
+    CHECK(j["meshes"].size() == 2 * count);
+    CHECK(j["materials"].size() == 2 * count);
+    CHECK(out.materials.size() == count);
     for (const auto& m : checked.document.materials) {
       const Json& gm = find_material(j, m.name);
       const Json& ext = gm["extensions"][gltf::kExtensionName];
@@ -203,31 +207,276 @@ TEST_CASE("glTF export: textured materials get baked fallback textures, uniform 
   CHECK_FALSE(cf.base_color.has_value());
   CHECK_FALSE(cf.metallic_roughness.has_value());
   Json cj = glb_json(plain.files[0].bytes);
-  CHECK_FALSE(cj.contains("textures"));
-  CHECK_FALSE(cj.contains("images"));
+  // The only texture is the sphere's label.
+  REQUIRE(cj["textures"].size() == 1);
+  CHECK(cj["images"].size() == 1);
+  CHECK_FALSE(cj["materials"][0]["pbrMetallicRoughness"].contains("baseColorTexture"));
+  CHECK(cj["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["index"] == 0);
 }
 
-TEST_CASE("glTF export: the showcase scene has one mesh and node per object, its cameras and lights") {
+TEST_CASE("glTF export: the showcase has a node per object, camera, light and label, in that order") {
   Diagnostics d;
   Scene scene = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", d);
   REQUIRE(d.ok());
   gltf::Export out = gltf::export_scene(scene, "showcase.glb", quick());
   Json j = glb_json(out.files[0].bytes);
-  size_t punctual = 0;
-  for (const auto& l : scene.lights) punctual += l.type != LightType::Environment;
-  CHECK(j["meshes"].size() == scene.objects.size());
-  CHECK(j["nodes"].size() == scene.objects.size() + scene.cameras.size() + punctual);
-  CHECK(j["scenes"][0]["nodes"].size() == j["nodes"].size());
-  CHECK(j.value("cameras", Json::array()).size() == scene.cameras.size());
-  if (punctual) CHECK(j["extensions"]["KHR_lights_punctual"]["lights"].size() == punctual);
-  std::set<std::string> names;
-  for (const auto& o : scene.objects) names.insert(o.material);
-  CHECK(j["materials"].size() == names.size());
-  // Nodes are labelled with the objects' names.
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    bool found = false;
-    for (const auto& n : j["nodes"]) found = found || n["name"] == scene.objects[i].name;
-    CHECK(found);
+  // 1 camera, 2 lights, 18 objects (17 spheres and the floor), 17 labels.
+  CHECK(j["nodes"].size() == 38);
+  CHECK(j["scenes"][0]["nodes"].size() == 38);
+  CHECK(j["meshes"].size() == 35);
+  CHECK(j["materials"].size() == 34);  // 17 lamina materials, 17 label materials
+  CHECK(out.materials.size() == 17);   // the fit report: lamina materials only
+  CHECK(j["cameras"].size() == 1);
+  CHECK(j["extensions"]["KHR_lights_punctual"]["lights"].size() == 2);
+  CHECK(j["nodes"][0]["name"] == "main");
+  CHECK(j["nodes"][1]["name"] == "key");
+  CHECK(j["nodes"][2]["name"] == "fill");
+  CHECK(j["nodes"][3]["name"] == "acrylic_lacquer");
+  CHECK(j["nodes"][20]["name"] == "floor");
+  CHECK(j["nodes"][21]["name"] == "acrylic_lacquer label");
+  CHECK(j["nodes"][37]["name"] == "sugar label");
+  CHECK(out.notes.empty());
+}
+
+namespace {
+
+// A scene written in examples/scenes (its material paths resolve like the showcase's).
+Scene scene_of(const std::string& text) {
+  Diagnostics d;
+  Scene scene = read_scene(text, (test::source_dir() / "examples/scenes/inline.json").string(), d);
+  for (const auto& e : d.errors()) INFO(format(e));
+  REQUIRE(d.ok());
+  return scene;
+}
+
+const Json& node_named(const Json& gltf, const std::string& name) {
+  for (const auto& n : gltf["nodes"])
+    if (n["name"] == name) return n;
+  FAIL("no node " << name);
+  static Json none;
+  return none;
+}
+
+// `epsilon`: 1e-12 for values computed in double; vertices are floats (1e-6).
+void check_numbers(const Json& actual, std::initializer_list<double> expected, double epsilon = 1e-12) {
+  REQUIRE(actual.size() == expected.size());
+  size_t i = 0;
+  for (double e : expected) CHECK(actual[i++].get<double>() == doctest::Approx(e).epsilon(epsilon));
+}
+
+// glTF node rotation [x, y, z, w] applied to v.
+glm::dvec3 rotate(const Json& q, glm::dvec3 v) {
+  return glm::dquat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>()) * v;
+}
+
+}  // namespace
+
+TEST_CASE("glTF export: a spot light has its cone angles in radians and shines along its direction") {
+  Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
+    "lights": [{"name": "spot", "type": "spot", "position": [1, 2, 3], "direction": [0, -1, -1], "color": [1, 0.5, 0.25],
+                "intensity": 40, "inner_cone": 10, "outer_cone": 25, "range": 12}],
+    "objects": [{"name": "ball", "shape": "sphere", "material": "brass"}]})");
+  Json j = glb_json(gltf::export_scene(scene, "spot.glb", quick()).files[0].bytes);
+  const Json& light = j["extensions"]["KHR_lights_punctual"]["lights"][0];
+  CHECK(light["type"] == "spot");
+  CHECK(light["intensity"] == 40.0);
+  CHECK(light["range"] == 12.0);
+  check_numbers(light["color"], {1.0, 0.5, 0.25});
+  // 10 and 25 degrees: pi / 18 and 5 pi / 36.
+  CHECK(light["spot"]["innerConeAngle"].get<double>() == doctest::Approx(0.17453292519943295).epsilon(1e-15));
+  CHECK(light["spot"]["outerConeAngle"].get<double>() == doctest::Approx(0.43633231299858238).epsilon(1e-15));
+  const Json& node = node_named(j, "spot");
+  CHECK(node["extensions"]["KHR_lights_punctual"]["light"] == 0);
+  check_numbers(node["translation"], {1.0, 2.0, 3.0});
+  // -Z turned down by 45 degrees about x: q = (sin(-22.5 deg), 0, 0, cos(22.5 deg)).
+  check_numbers(node["rotation"], {-0.38268343236508978, 0.0, 0.0, 0.92387953251128674});
+  const glm::dvec3 shines = rotate(node["rotation"], glm::dvec3(0, 0, -1));
+  CHECK(shines.y == doctest::Approx(-std::sqrt(0.5)));
+  CHECK(shines.z == doctest::Approx(-std::sqrt(0.5)));
+}
+
+TEST_CASE("glTF export: a camera looks at its target, and a directional light shines along its direction") {
+  Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
+    "cameras": [{"name": "cam", "position": [4, 0, 4], "look_at": [0, 0, 0], "yfov": 35, "aspect": 2, "znear": 0.5,
+                 "zfar": 80}],
+    "lights": [{"name": "sun", "type": "directional", "direction": [1, 0, 0], "intensity": 3}],
+    "objects": [{"name": "ball", "shape": "sphere", "material": "brass"}]})");
+  Json j = glb_json(gltf::export_scene(scene, "camera.glb", quick()).files[0].bytes);
+  const Json& camera = j["cameras"][0];
+  CHECK(camera["type"] == "perspective");
+  CHECK(camera["perspective"]["yfov"].get<double>() == doctest::Approx(0.61086523819801535).epsilon(1e-15));
+  CHECK(camera["perspective"]["aspectRatio"] == 2.0);
+  CHECK(camera["perspective"]["znear"] == 0.5);
+  CHECK(camera["perspective"]["zfar"] == 80.0);
+  const Json& cam = node_named(j, "cam");
+  check_numbers(cam["translation"], {4.0, 0.0, 4.0});
+  // Turned 45 degrees about y: q = (0, sin(22.5 deg), 0, cos(22.5 deg)); -Z then points at the origin.
+  check_numbers(cam["rotation"], {0.0, 0.38268343236508978, 0.0, 0.92387953251128674});
+  const Json& sun = node_named(j, "sun");
+  CHECK_FALSE(sun.contains("translation"));
+  // -Z turned to +x: 90 degrees about y, negative: q = (0, -sin(45 deg), 0, cos(45 deg)).
+  check_numbers(sun["rotation"], {0.0, -0.70710678118654757, 0.0, 0.70710678118654757});
+  CHECK(j["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] == "directional");
+  CHECK(j["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] == 3.0);
+}
+
+TEST_CASE("glTF export: an environment light is left out with a note, in the library and through the CLI") {
+  const std::string text = R"({"format": 1, "materials": ["MATERIAL"],
+    "lights": [{"name": "key", "type": "point", "position": [0, 3, 0], "intensity": 10},
+               {"name": "sky", "type": "environment", "file": "TEXTURE", "intensity": 2}],
+    "objects": [{"name": "ball", "shape": "sphere", "material": "brass"}]})";
+  auto with_paths = [&](const std::string& material, const std::string& texture) {
+    std::string s = text;
+    s.replace(s.find("MATERIAL"), 8, material);
+    s.replace(s.find("TEXTURE"), 7, texture);
+    return s;
+  };
+  Scene scene = scene_of(with_paths("../materials/brass.json", "../textures/patina_mask.png"));
+  gltf::Export out = gltf::export_scene(scene, "env.glb", quick());
+  Json j = glb_json(out.files[0].bytes);
+  REQUIRE(out.notes.size() == 1);
+  CHECK(out.notes[0].find("environment light 'sky' has no glTF 2.0 counterpart") != std::string::npos);
+  REQUIRE(j["extensions"]["KHR_lights_punctual"]["lights"].size() == 1);
+  CHECK(j["extensions"]["KHR_lights_punctual"]["lights"][0]["name"] == "key");
+  CHECK(j["nodes"].size() == 2);  // the point light and the ball
+  for (const auto& n : j["nodes"]) CHECK(n["name"] != "sky");
+
+  test::TempDir dir;
+  std::ofstream(dir.path() / "env.json") << with_paths(
+      (test::source_dir() / "examples/materials/brass.json").string(),
+      (test::source_dir() / "examples/textures/patina_mask.png").string());
+  auto r = test::run_cli("gltf env.json --bake-size 8 -o env.glb", dir.path());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("lamina: note: environment light 'sky' has no glTF 2.0 counterpart") != std::string::npos);
+  CHECK(std::filesystem::exists(dir.path() / "env.glb"));
+}
+
+TEST_CASE("glTF export: box, torus and mesh-file objects have their vertices, bounds and transforms") {
+  Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
+    "objects": [{"name": "crate", "shape": "box", "size": [1, 2, 3], "material": "brass",
+                 "transform": {"translation": [1, 2, 3], "rotation_deg": [90, 0, 0], "scale": [2, 2, 2]}},
+                {"name": "ring", "shape": "torus", "major_radius": 1, "minor_radius": 0.25, "segments": 16,
+                 "material": "brass"},
+                {"name": "quad", "shape": "mesh", "file": "../../tests/data/scenes/quad.gltf", "material": "brass",
+                 "transform": {"rotation": [0, 0, 1, 0]}}]})");
+  Json j = glb_json(gltf::export_scene(scene, "shapes.glb", quick()).files[0].bytes);
+  REQUIRE(j["meshes"].size() == 3);
+  auto accessor = [&](size_t mesh, const char* attribute) -> const Json& {
+    const Json& primitive = j["meshes"][mesh]["primitives"][0];
+    return j["accessors"][std::string(attribute) == "indices" ? primitive["indices"].get<size_t>()
+                                                              : primitive["attributes"][attribute].get<size_t>()];
+  };
+  // Box: six faces of four vertices and two triangles.
+  CHECK(accessor(0, "POSITION")["count"] == 24);
+  CHECK(accessor(0, "indices")["count"] == 36);
+  CHECK(accessor(0, "indices")["componentType"] == 5123);
+  check_numbers(accessor(0, "POSITION")["min"], {-0.5, -1.0, -1.5});
+  check_numbers(accessor(0, "POSITION")["max"], {0.5, 1.0, 1.5});
+  // Torus: 16 segments around and 8 across, a seam row and column repeated: 17 x 9 vertices.
+  CHECK(accessor(1, "POSITION")["count"] == 153);
+  CHECK(accessor(1, "indices")["count"] == 768);
+  check_numbers(accessor(1, "POSITION")["min"], {-1.25, -0.25, -1.25});
+  check_numbers(accessor(1, "POSITION")["max"], {1.25, 0.25, 1.25});
+  // quad.gltf: its node transform (scale 2, +1 along x) is baked into the vertices.
+  CHECK(accessor(2, "POSITION")["count"] == 4);
+  CHECK(accessor(2, "indices")["count"] == 6);
+  check_numbers(accessor(2, "POSITION")["min"], {0.0, -1.0, 0.0});
+  check_numbers(accessor(2, "POSITION")["max"], {2.0, 1.0, 0.0});
+  for (size_t m = 0; m < 3; ++m) CHECK(accessor(m, "TANGENT")["type"] == "VEC4");
+
+  const Json& crate = node_named(j, "crate");
+  check_numbers(crate["translation"], {1.0, 2.0, 3.0});
+  check_numbers(crate["scale"], {2.0, 2.0, 2.0});
+  check_numbers(crate["rotation"], {0.70710678118654757, 0.0, 0.0, 0.70710678118654757});  // 90 degrees about x
+  CHECK_FALSE(node_named(j, "ring").contains("rotation"));
+  check_numbers(node_named(j, "quad")["rotation"], {0.0, 0.0, 1.0, 0.0});
+}
+
+TEST_CASE("glTF export: a label is an unlit quad under its object, facing the first camera, left out of the report") {
+  Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
+    "cameras": [{"name": "cam", "position": [10, 3, 10], "look_at": [0, 3, 0]}],
+    "objects": [{"name": "ball", "shape": "sphere", "radius": 2, "material": "brass", "label": "Brass",
+                 "transform": {"translation": [0, 5, 0]}},
+                {"name": "plain", "shape": "sphere", "material": "brass", "transform": {"translation": [6, 0, 0]}}]})");
+  gltf::Export out = gltf::export_scene(scene, "label.glb", quick());
+  Json j = glb_json(out.files[0].bytes);
+  CHECK(out.materials.size() == 1);
+  REQUIRE(j["materials"].size() == 2);
+  const Json& material = j["materials"][1];
+  CHECK(material["name"] == "ball label");
+  CHECK(material["extras"] == Json{{"lamina_label", "Brass"}});
+  CHECK(material["extensions"] == Json{{"KHR_materials_unlit", Json::object()}});
+  CHECK(material["alphaMode"] == "BLEND");
+  CHECK(material["pbrMetallicRoughness"]["metallicFactor"] == 0.0);
+  const auto used = j["extensionsUsed"].get<std::vector<std::string>>();
+  CHECK(std::find(used.begin(), used.end(), "KHR_materials_unlit") != used.end());
+
+  REQUIRE(j["nodes"].size() == 4);  // camera, two spheres, one label
+  const Json& label = j["nodes"][3];
+  CHECK(label["name"] == "ball label");
+  // The camera looks along (-1, 0, -1): the label turns 45 degrees about y to face it.
+  check_numbers(label["rotation"], {0.0, 0.38268343236508978, 0.0, 0.92387953251128674});
+  // The sphere is 4 wide seen from the camera: the text is 0.14 x 4 = 0.56 high, its top 0.02 x 4
+  // = 0.08 below the sphere's lowest point (5 - 2); x and z centred under it.
+  const Json& scale = label["scale"];
+  CHECK(scale[1].get<double>() == doctest::Approx(0.56).epsilon(1e-6));
+  CHECK(scale[0].get<double>() > scale[1].get<double>());  // "Brass" is wider than high
+  CHECK(scale[0].get<double>() <= 1.2 * 4.0 + 1e-12);      // and never wider than 1.2 x the object
+  check_numbers(label["translation"], {0.0, 2.92, 0.0}, 1e-6);
+  // The quad's texture: the label image, clamped, its content in the top-left of a power of two.
+  const Json& primitive = j["meshes"][label["mesh"].get<size_t>()]["primitives"][0];
+  CHECK(primitive["material"] == 1);
+  const Json& texture = j["textures"][material["pbrMetallicRoughness"]["baseColorTexture"]["index"].get<size_t>()];
+  CHECK(j["samplers"][texture["sampler"].get<size_t>()]["wrapS"] == 33071);
+  CHECK(j["images"][texture["source"].get<size_t>()]["mimeType"] == "image/png");
+}
+
+TEST_CASE("glTF export: the .bin's URI is percent-encoded, and lamina import reads it back") {
+  test::TempDir dir;
+  Scene scene = sheet_of(test::source_dir() / "examples/materials/car_paint.json");
+  const auto output = dir.path() / "my scene#1%+.gltf";
+  gltf::Export out = gltf::export_scene(scene, output, quick());
+  REQUIRE(out.files.size() == 2);
+  CHECK(out.files[1].path == dir.path() / "my scene#1%+.bin");
+  Json j = Json::parse(std::string(out.files[0].bytes.begin(), out.files[0].bytes.end()));
+  CHECK(j["buffers"][0]["uri"] == "my%20scene%231%25%2B.bin");
+  for (const auto& f : out.files) {
+    std::ofstream file(f.path, std::ios::binary);
+    file.write(reinterpret_cast<const char*>(f.bytes.data()), static_cast<std::streamsize>(f.bytes.size()));
+  }
+  auto r = test::run_cli("import \"my scene#1%+.gltf\" -o imported.json", dir.path());
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(std::filesystem::exists(dir.path() / "imported.json"));
+}
+
+TEST_CASE(
+    "lamina gltf and validate: every broken scene of the corpus exits 2 with its file and pointer, and gltf writes "
+    "nothing") {
+  const auto dir = test::source_dir() / "tests/data/bad_scenes";
+  test::TempDir out;
+  for (const auto& c : Json::parse(test::read_file(dir / "cases.json"))) {
+    const std::string name = c["file"];
+    CAPTURE(name);
+    const std::filesystem::path scene = std::filesystem::path("tests/data/bad_scenes") / name;
+    const std::string file = c.contains("in")
+                                 ? (scene.parent_path() / c["in"].get<std::string>()).lexically_normal().string()
+                                 : scene.string();
+    const std::string at = file + ":" + c["pointer"].get<std::string>() + ":";
+    auto r = test::run_cli("gltf " + scene.string() + " --bake-size 8 -o " + (out.path() / "out.glb").string(),
+                           test::source_dir());
+    INFO(r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(at) != std::string::npos);
+    CHECK(std::filesystem::is_empty(out.path()));
+    // lamina validate reports a broken mesh file the same way.
+    if (name.rfind("mesh_", 0) == 0) {
+      auto v = test::run_cli("validate " + scene.string(), test::source_dir());
+      INFO(v.err);
+      CHECK(v.exit_code == 2);
+      CHECK(v.err.find(at) != std::string::npos);
+    }
   }
 }
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
+#include "graph/gltf/export.h"
 #include "graph/gltf/pbr_to_layers.h"
 #include "graph/json_write.h"
 #include "graph/load.h"
@@ -264,4 +266,99 @@ TEST_CASE("import: the conversion formulas match the Fresnel equations they inve
   CHECK(gltf::ior_from_f0(0.04) == doctest::Approx(1.5));
   CHECK(gltf::conductor_k_from_f0(0.766) == doctest::Approx(3.6185656127832053).epsilon(1e-12));
   CHECK(gltf::conductor_k_from_f0(0.0) == 0.0);
+}
+
+namespace {
+
+void write_bytes(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  REQUIRE(out.good());
+}
+
+}  // namespace
+
+TEST_CASE("import: a glTF with no materials is an error, and lamina import writes nothing") {
+  // An empty material file is not a valid one (lamina validate rejects it), so it is not written.
+  const auto quad = test::source_dir() / "tests/data/scenes/quad.gltf";
+  Diagnostics diagnostics;
+  auto result = gltf::import_gltf(quad, diagnostics);
+  REQUIRE(diagnostics.errors().size() == 1);
+  CHECK(diagnostics.errors()[0].file == quad.string());
+  CHECK(diagnostics.errors()[0].pointer == "");
+  CHECK(diagnostics.errors()[0].message.find("no materials") != std::string::npos);
+  CHECK(result.document.materials.empty());
+
+  test::TempDir dir;
+  auto r = test::run_cli("import " + quad.string() + " -o out/imported.json", dir.path());
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find(quad.string() + ":: the glTF file has no materials") != std::string::npos);
+  CHECK(std::filesystem::is_empty(dir.path()));
+}
+
+TEST_CASE("import: object label materials are left out, with a note and no warning, and labels alone are an error") {
+  // A lamina export's labels: the sample sheet of car_paint has one sphere and its label.
+  test::TempDir dir;
+  CheckedFile checked = check_file(test::source_dir() / "examples/materials/car_paint.json");
+  REQUIRE(checked.ok());
+  gltf::ExportOptions quick;
+  quick.fallback.bake_size = 16;
+  gltf::Export exported =
+      gltf::export_scene(sample_sheet(checked.document, test::source_dir() / "examples/materials/car_paint.json"),
+                         dir.path() / "sheet.gltf", quick);
+  for (const auto& f : exported.files) write_bytes(f.path, f.bytes);
+  Diagnostics diagnostics;
+  auto result = gltf::import_gltf(dir.path() / "sheet.gltf", diagnostics);
+  CHECK(diagnostics.ok());
+  CHECK(diagnostics.warnings().empty());  // KHR_materials_unlit is used by the label only
+  REQUIRE(result.document.materials.size() == 1);
+  CHECK(result.document.materials[0].name == "car_paint");
+  CHECK(std::find(result.notes.begin(), result.notes.end(), "1 object label material was left out") !=
+        result.notes.end());
+
+  // Only the label left: nothing to import.
+  auto j = nlohmann::json::parse(test::read_file(dir.path() / "sheet.gltf"));
+  j["materials"].erase(0);
+  j["meshes"][0]["primitives"][0].erase("material");
+  j["meshes"][1]["primitives"][0]["material"] = 0;
+  std::ofstream(dir.path() / "labels.gltf") << j.dump();
+  Diagnostics only_labels;
+  gltf::import_gltf(dir.path() / "labels.gltf", only_labels);
+  REQUIRE(only_labels.errors().size() == 1);
+  CHECK(only_labels.errors()[0].pointer == "/materials");
+  CHECK(only_labels.errors()[0].message.find("all object labels") != std::string::npos);
+  CHECK(only_labels.warnings().empty());
+}
+
+TEST_CASE("import: a LAMINA_materials_layered material takes its name from the graph, not from the glTF") {
+  // A tool renamed the glTF material; the graph inside the extension still says car_paint.
+  auto j = nlohmann::json::parse(test::read_file(data("lamina_layered.gltf")));
+  REQUIRE(j["materials"][0]["extensions"]["LAMINA_materials_layered"]["material"]["name"] == "car_paint");
+  j["materials"][0]["name"] = "Car Paint (renamed)";
+  test::TempDir dir;
+  std::ofstream(dir.path() / "renamed.gltf") << j.dump();
+  Diagnostics diagnostics;
+  auto result = gltf::import_gltf(dir.path() / "renamed.gltf", diagnostics);
+  for (const auto& d : diagnostics.errors()) INFO(format(d));
+  REQUIRE(diagnostics.ok());
+  REQUIRE(result.document.materials.size() == 2);
+  CHECK(result.document.materials[0].name == "car_paint");
+  CHECK(result.document.materials[1].name == "patina_map_copper");
+}
+
+TEST_CASE("import: an image's percent-encoded URI is decoded, for reading it and for the extracted file's name") {
+  test::TempDir dir;
+  std::filesystem::copy_file(test::source_dir() / "examples/textures/patina_mask.png", dir.path() / "my mask#1.png");
+  auto j = nlohmann::json::parse(test::read_file(data("base_color_texture.gltf")));
+  j["images"][0] = {{"uri", "my%20mask%231.png"}};
+  std::ofstream(dir.path() / "encoded.gltf") << j.dump();
+  Diagnostics diagnostics;
+  auto result = gltf::import_gltf(dir.path() / "encoded.gltf", diagnostics);
+  for (const auto& d : diagnostics.errors()) INFO(format(d));
+  REQUIRE(diagnostics.ok());
+  REQUIRE(result.textures.size() == 1);
+  // "my mask#1.png" made safe for every file system.
+  CHECK(result.textures[0].file_name == "my_mask_1.png");
+  CHECK(std::string(result.textures[0].bytes.begin(), result.textures[0].bytes.end()) ==
+        test::read_file(dir.path() / "my mask#1.png"));
 }

@@ -3,9 +3,11 @@
 // (recovering known glTF parameters; every bundled example fitted within documented limits).
 #include "graph/gltf/pbr_fit.h"
 
+#include "graph/compile.h"
+#include "graph/gltf/fallback.h"
+
 #include <doctest/doctest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -199,48 +201,99 @@ float unreachable(vec3 albedo) {
   return worst;
 }
 
+// What a texture state of a material is made of, read from its compiled stack (never from a fit):
+// whether a conductor is reachable through the mixes at that state's weights.
+bool reaches_conductor(const Program& program, const std::vector<float>& registers, int index) {
+  const StackNode& node = program.stack[static_cast<size_t>(index)];
+  if (std::holds_alternative<ConductorNode>(node)) return true;
+  if (const auto* layer = std::get_if<LayerNode>(&node)) return reaches_conductor(program, registers, layer->base);
+  if (const auto* mix = std::get_if<MixNode>(&node)) {
+    // The evaluator clamps a linked weight to its range [0, 1]; a stack with no weight is not seen.
+    const float w = std::clamp(
+        mix->weight.slot >= 0 ? registers[static_cast<size_t>(mix->weight.slot)] : mix->weight.constant, 0.0f, 1.0f);
+    return (w < 1.0f && reaches_conductor(program, registers, mix->a)) ||
+           (w > 0.0f && reaches_conductor(program, registers, mix->b));
+  }
+  return false;  // a diffuse substrate
+}
+
+// Limits by structure on the errors beyond the unreachable share, each the worst measured over the
+// fitted texture states of the bundled examples (the table this test prints) plus 0.02, rounded up
+// to a whole percent: the margin covers compilers and libm implementations that round differently,
+// while a change that makes any fit worse by more than two percentage points fails.
+//  - Dielectric coats over a diffuse base: glTF's dielectric lobe over Lambert is the same
+//    structure. Worst: A(0) 0.131, A(80) 0.163 and RMS 0.190, all frosted_acrylic_paint (a rough
+//    coat, which glTF's single roughness shares with the base).
+//  - A conductor reachable under a coat: one Schlick-Fresnel GGX lobe per glTF layer cannot follow
+//    a metal lobe squeezed into the coat's refraction cone, nor the coat's absorption at grazing
+//    angles. Worst: A(0) 0.239 and A(80) 0.174 (car_paint), RMS 0.537 (silver_paint).
+struct Limits {
+  float normal, grazing, rms;
+};
+constexpr Limits kDiffuseBase{0.16f, 0.19f, 0.22f};
+constexpr Limits kConductorBase{0.26f, 0.20f, 0.56f};
+
 }  // namespace
 
-TEST_CASE("fit_pbr fits every bundled example within its limits, deterministically") {
-  // Limits on the relative albedo error beyond the unreachable share: 0.15 at normal incidence and
-  // 0.2 at 80 degrees for a dielectric coat over a diffuse base (the fit keeps metallic < 0.5);
-  // 0.25 and 0.25 for the others (one Schlick-Fresnel GGX lobe per layer, no absorption or
-  // refraction between layers, where lamina's metals under coats concentrate energy near the normal).
+TEST_CASE("fit_pbr fits every texture state of every bundled example within its structure's limits") {
+  // The fallback fits exactly what the export fits: every distinct texture state of the bake grid
+  // (or the representative states when there are more than max_states), with the CLI's options.
+  const gltf::FallbackOptions options;
   std::string table =
-      "\nname                   base colour           metal rough  ior   spec  spec colour          coat  c.rough"
-      " ext | A(0) err A(80) err  rms    time\n";
+      "\nname                   state uv            base  base colour           metal rough  ior   spec"
+      "  coat  c.rough ext | A(0) err unreach A(80) err unreach rms\n";
   for (const auto& file : test::example_files()) {
-    std::string name = file.stem().string();
-    cpu::Evaluator material = test::load_evaluator(file);
-    ShadingContext ctx;
-    ctx.uv = glm::vec2(0.5f);
-    auto start = std::chrono::steady_clock::now();
-    gltf::FitResult fit = gltf::fit_pbr(material, ctx);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    gltf::FitResult again = gltf::fit_pbr(material, ctx);
-    const PbrParams& p = fit.params;
-    char line[400];
-    std::snprintf(line, sizeof line,
-                  "%-22s (%.3f,%.3f,%.3f)  %.3f %.3f  %.3f %.3f (%.2f,%.2f,%.2f)  %.3f %.3f   %c%c%c | %.4f   %.4f   "
-                  "%.4f %.2fs\n",
-                  name.c_str(), p.base_color.x, p.base_color.y, p.base_color.z, p.metallic, p.roughness, p.ior,
-                  p.specular, p.specular_color.x, p.specular_color.y, p.specular_color.z, p.clearcoat,
-                  p.clearcoat_roughness, fit.uses_clearcoat ? 'c' : '-', fit.uses_ior ? 'i' : '-',
-                  fit.uses_specular ? 's' : '-', fit.error.albedo_normal, fit.error.albedo_grazing, fit.error.rms,
-                  seconds);
-    table += line;
-    INFO(line);
-    bool simple = p.metallic < 0.5f && !fit.uses_clearcoat;
-    float normal_limit = simple ? 0.15f : 0.25f, grazing_limit = simple ? 0.2f : 0.25f;
-    vec3 normal(0.0f, 0.0f, 1.0f), grazing(std::sin(1.3962634f), 0.0f, std::cos(1.3962634f));
-    CHECK(fit.error.albedo_normal < unreachable(material.albedo(ctx, normal)) + normal_limit);
-    CHECK(fit.error.albedo_grazing < unreachable(material.albedo(ctx, grazing)) + grazing_limit);
-    CHECK(fit.error.rms < 0.6f);
-    // The reported unreachable share is (A - 1) / A of the material's own albedo at normal incidence.
-    CHECK(fit.error.unreachable_normal == doctest::Approx(unreachable(material.albedo(ctx, normal))).epsilon(1e-4));
-    CHECK(std::memcmp(&fit.params, &again.params, sizeof(PbrParams)) == 0);
-    CHECK(fit.error.rms == again.error.rms);
-    CHECK(fit.uses_ior == again.uses_ior);
+    const std::string name = file.stem().string();
+    CheckedFile checked = check_file(file);
+    REQUIRE(checked.ok());
+    const Program program = compile(*checked.graphs[0], file.string());
+    const cpu::Evaluator material(program);
+    const gltf::Fallback fallback = gltf::fit_fallback(program, options);
+    REQUIRE_FALSE(fallback.states.empty());
+    for (const auto& state : fallback.states) {
+      ShadingContext ctx;
+      ctx.uv = state.uv;
+      const bool conductor = reaches_conductor(program, material.texture_registers(ctx), program.root);
+      const gltf::FitResult& fit = state.fit;
+      const PbrParams& p = fit.params;
+      const vec3 normal(0.0f, 0.0f, 1.0f), grazing(std::sin(1.3962634f), 0.0f, std::cos(1.3962634f));
+      const float unreachable_normal = unreachable(material.albedo(ctx, normal));
+      const float unreachable_grazing = unreachable(material.albedo(ctx, grazing));
+      char line[400];
+      std::snprintf(line, sizeof line,
+                    "%-22s (%.3f, %.3f)  %-5s (%.3f,%.3f,%.3f)  %.3f %.3f  %.3f %.3f  %.3f %.3f   %c%c%c | %.4f   "
+                    "%.4f  %.4f   %.4f  %.4f\n",
+                    name.c_str(), state.uv.x, state.uv.y, conductor ? "metal" : "diff", p.base_color.x, p.base_color.y,
+                    p.base_color.z, p.metallic, p.roughness, p.ior, p.specular, p.clearcoat, p.clearcoat_roughness,
+                    fit.uses_clearcoat ? 'c' : '-', fit.uses_ior ? 'i' : '-', fit.uses_specular ? 's' : '-',
+                    fit.error.albedo_normal, unreachable_normal, fit.error.albedo_grazing, unreachable_grazing,
+                    fit.error.rms);
+      table += line;
+      INFO(line);
+      const Limits& limits = conductor ? kConductorBase : kDiffuseBase;
+      CHECK(fit.error.albedo_normal <= unreachable_normal + limits.normal);
+      CHECK(fit.error.albedo_grazing <= unreachable_grazing + limits.grazing);
+      CHECK(fit.error.rms <= limits.rms);
+      // The reported unreachable share is (A - 1) / A of the material's own albedo at normal incidence.
+      CHECK(fit.error.unreachable_normal == doctest::Approx(unreachable_normal).epsilon(1e-4));
+    }
   }
   MESSAGE(table);
+}
+
+TEST_CASE("fit_pbr is deterministic: the same material and state give bit-identical parameters") {
+  for (const char* example : {"car_paint", "house_paint", "checker_tiles"}) {
+    CAPTURE(example);
+    cpu::Evaluator material =
+        test::load_evaluator(test::source_dir() / "examples/materials" / (std::string(example) + ".json"));
+    ShadingContext ctx;
+    ctx.uv = glm::vec2(0.3f, 0.6f);
+    const gltf::FitResult fit = gltf::fit_pbr(material, ctx), again = gltf::fit_pbr(material, ctx);
+    CHECK(std::memcmp(&fit.params, &again.params, sizeof(PbrParams)) == 0);
+    CHECK(fit.error.rms == again.error.rms);
+    CHECK(fit.error.albedo_normal == again.error.albedo_normal);
+    CHECK(fit.uses_ior == again.uses_ior);
+    CHECK(fit.uses_clearcoat == again.uses_clearcoat);
+    CHECK(fit.uses_specular == again.uses_specular);
+  }
 }

@@ -51,11 +51,12 @@ TEST_CASE("a sample sheet puts one unit sphere per material on a grid, framed by
   CHECK(s.lights[0].name != s.lights[1].name);
 }
 
-TEST_CASE("a sample sheet of fewer materials than columns is one centred row") {
+TEST_CASE("a sample sheet of fewer materials than columns is one centred row, labelled with the material") {
   Document doc;
   doc.materials.emplace_back();
   doc.materials.back().name = "only";
   Scene s = sample_sheet(doc, "one.json");
   REQUIRE(s.objects.size() == 1);
   CHECK(s.objects[0].transform.translation == glm::dvec3(0.0));
+  CHECK(s.objects[0].label == "only");
 }

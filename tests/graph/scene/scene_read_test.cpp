@@ -163,3 +163,58 @@ TEST_CASE("scene files are told from material files by their objects") {
   CHECK(looks_like_scene(R"({"format": 1, "objects": [,]})"));  // malformed, still a scene
   CHECK_FALSE(looks_like_scene(""));
 }
+
+TEST_CASE("an object's optional label is read as written, and the showcase labels every sphere with its name") {
+  Diagnostics d;
+  Scene s = read_inline(R"json({"format": 1, "materials": ["../materials/brass.json"],
+    "objects": [{"name": "a", "shape": "sphere", "material": "brass", "label": "Brass, polished (ü)"},
+                {"name": "b", "shape": "box", "material": "brass"}]})json",
+                        d);
+  INFO(all_problems(d));
+  REQUIRE(d.ok());
+  CHECK(s.objects[0].label == "Brass, polished (\xc3\xbc)");
+  CHECK(s.objects[1].label.empty());
+
+  // 64 characters are allowed (the two bytes of U+00FC count as one), 65 are not.
+  auto with_label = [](const std::string& label) {
+    Diagnostics out;
+    read_inline(R"({"format": 1, "materials": ["../materials/brass.json"],
+      "objects": [{"name": "a", "shape": "sphere", "material": "brass", "label": ")" +
+                    label + "\"}]}",
+                out);
+    return out;
+  };
+  CHECK(with_label(std::string(63, 'x') + "\xc3\xbc").ok());
+  Diagnostics too_long = with_label(std::string(64, 'x') + "\xc3\xbc");
+  REQUIRE(too_long.errors().size() == 1);
+  CHECK(too_long.errors()[0].pointer == "/objects/0/label");
+
+  Diagnostics showcase;
+  Scene s2 = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", showcase);
+  size_t labelled = 0;
+  for (const auto& o : s2.objects)
+    if (o.shape == ShapeType::Sphere) {
+      CHECK(o.label == o.name);
+      ++labelled;
+    }
+  CHECK(labelled == 17);
+}
+
+TEST_CASE("a transform is practically singular when its scale's magnitudes differ by more than 1e6") {
+  auto scene_with_scale = [](const std::string& scale) {
+    Diagnostics d;
+    read_inline(R"({"format": 1, "materials": ["../materials/brass.json"],
+      "objects": [{"name": "a", "shape": "sphere", "material": "brass", "transform": {"scale": )" +
+                    scale + "}}]}",
+                d);
+    return d;
+  };
+  CHECK(scene_with_scale("[1e-3, 1e3, -1]").ok());  // a ratio of exactly 1e6, mirrored
+  CHECK(scene_with_scale("[1e-6, 1e-6, 1e-6]").ok());
+  Diagnostics ratio = scene_with_scale("[1e-3, 1.001e3, 1]");
+  REQUIRE(ratio.errors().size() == 1);
+  CHECK(ratio.errors()[0].pointer == "/objects/0/transform/scale");
+  Diagnostics tiny = scene_with_scale("[1, 9.99e-7, 1]");
+  REQUIRE(tiny.errors().size() == 1);
+  CHECK(tiny.errors()[0].pointer == "/objects/0/transform/scale/1");
+}

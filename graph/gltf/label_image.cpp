@@ -1,0 +1,94 @@
+#include "graph/gltf/label_image.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+
+#include "graph/json_read.h"
+
+namespace lamina::gltf {
+
+namespace {
+
+constexpr int kFontSize = 48;  // pixels: sharp at the size a label fills on screen
+constexpr int kHalo = 4;       // pixels of dark outline around the glyphs
+constexpr int kPadding = kHalo + 2;
+
+// DejaVu where the common systems keep it (Debian: fonts-dejavu-core).
+std::string find_font() {
+  const char* dirs[] = {"/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/TTF", "/usr/share/fonts/dejavu",
+                        "/usr/share/fonts/dejavu-sans-fonts", "/usr/local/share/fonts"};
+  for (const char* dir : dirs) {
+    const std::filesystem::path path = std::filesystem::path(dir) / "DejaVuSans-Bold.ttf";
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(path, ec)) return path.string();
+  }
+  throw IoError(
+      "cannot render object labels: the font DejaVuSans-Bold.ttf was not found (Debian: apt-get install "
+      "fonts-dejavu-core)");
+}
+
+OIIO::ROI measure(const std::string& text, const std::string& font) {
+  OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(text, kFontSize, font);
+  if (!roi.defined()) throw IoError("cannot render object labels with the font " + font + ": " + OIIO::geterror());
+  return roi;
+}
+
+}  // namespace
+
+LabelImage render_label(const std::string& text) {
+  const std::string font = find_font();
+  // The line's height from glyphs that reach the font's usual extremes, not from this text, so
+  // that "ace" and "Ply" make images of the same height.
+  const OIIO::ROI line = measure("Hgjpqy|", font);
+  const OIIO::ROI ink = measure(text, font);
+  const int ascent = -line.ybegin, descent = line.yend;
+  LabelImage out;
+  out.content_width = std::max(1, ink.xend - ink.xbegin) + 2 * kPadding;
+  out.content_height = ascent + descent + 2 * kPadding;
+  out.width = static_cast<int>(std::bit_ceil(static_cast<unsigned>(out.content_width)));
+  out.height = static_cast<int>(std::bit_ceil(static_cast<unsigned>(out.content_height)));
+
+  OIIO::ImageBuf coverage(OIIO::ImageSpec(out.width, out.height, 1, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::zero(coverage);
+  const float white = 1.0f;
+  if (!OIIO::ImageBufAlgo::render_text(coverage, kPadding - ink.xbegin, kPadding + ascent, text, kFontSize, font,
+                                       OIIO::cspan<float>(&white, 1)))
+    throw IoError("cannot render the label '" + text + "': " + coverage.geterror());
+  const auto w = static_cast<size_t>(out.width), h = static_cast<size_t>(out.height);
+  std::vector<float> c(w * h);
+  coverage.get_pixels(OIIO::ROI(0, out.width, 0, out.height), OIIO::TypeDesc::FLOAT, c.data());
+
+  // The halo: the coverage dilated by a disk of radius kHalo, its rim antialiased.
+  std::vector<float> halo(w * h, 0.0f);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      float best = 0.0f;
+      for (int dy = -kHalo - 1; dy <= kHalo + 1; ++dy)
+        for (int dx = -kHalo - 1; dx <= kHalo + 1; ++dx) {
+          const int sx = x + dx, sy = y + dy;
+          if (sx < 0 || sy < 0 || sx >= out.width || sy >= out.height) continue;
+          const float rim = std::clamp(float(kHalo) + 1.0f - std::hypot(float(dx), float(dy)), 0.0f, 1.0f);
+          best = std::max(best, rim * c[static_cast<size_t>(sy) * w + static_cast<size_t>(sx)]);
+        }
+      halo[static_cast<size_t>(y) * w + static_cast<size_t>(x)] = best;
+    }
+
+  // White text over the black halo ("over" compositing), stored with straight alpha as glTF wants.
+  out.rgba.resize(w * h * 4);
+  for (size_t i = 0; i < w * h; ++i) {
+    const float text_alpha = std::clamp(c[i], 0.0f, 1.0f);
+    const float alpha = text_alpha + halo[i] * (1.0f - text_alpha);
+    const float value = alpha > 0.0f ? text_alpha / alpha : 0.0f;
+    const auto byte = [](float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    out.rgba[4 * i] = out.rgba[4 * i + 1] = out.rgba[4 * i + 2] = byte(value);
+    out.rgba[4 * i + 3] = byte(alpha);
+  }
+  return out;
+}
+
+}  // namespace lamina::gltf
