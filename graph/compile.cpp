@@ -83,10 +83,19 @@ class Compiler {
     return RoughnessRef{scalar(i, "roughness_deg"), true};
   }
 
+  // Enum values are checked against their declarations before compiling.
   static Distribution distribution(const std::string& name) {
     if (name == "blinn") return Distribution::Blinn;
     if (name == "ggx") return Distribution::Ggx;
-    return Distribution::Beckmann;
+    if (name == "beckmann") return Distribution::Beckmann;
+    throw std::logic_error("compile: unknown distribution " + name);
+  }
+
+  static Fresnel fresnel(const std::string& name) {
+    if (name == "schlick") return Fresnel::Schlick;
+    if (name == "lazanyi") return Fresnel::Lazanyi;
+    if (name == "exact") return Fresnel::Exact;
+    throw std::logic_error("compile: unknown fresnel " + name);
   }
 
   void set_output(size_t i, const std::string& name, Output out) { outputs_[{i, name}] = out; }
@@ -143,7 +152,8 @@ class Compiler {
   LayerInterface interface(size_t i) const {
     const std::string& type = g_.decl(i).type;
     if (type == "interface/dielectric")
-      return DielectricInterface{scalar(i, "ior"), roughness(i), distribution(text(i, "distribution")), g_.node(i).id};
+      return DielectricInterface{scalar(i, "ior"), roughness(i), distribution(text(i, "distribution")),
+                                 fresnel(text(i, "fresnel")), g_.node(i).id};
     throw std::logic_error("compile: no CPU interface for " + type);
   }
 
@@ -186,6 +196,7 @@ class Compiler {
       }
       c.roughness = roughness(i);
       c.distribution = distribution(text(i, "distribution"));
+      c.fresnel = fresnel(text(i, "fresnel"));
       node = c;
     } else {
       throw std::logic_error("compile: no CPU stack node for " + type);

@@ -34,6 +34,9 @@ struct ColorRef {
 };
 
 enum class Distribution { Beckmann = 0, Blinn = 1, Ggx = 2 };
+// The Fresnel term of a microfacet node; the values are the kernels' fresnel_mode
+// (lamina_fresnel_dielectric, lamina_fresnel_conductor in nodes/kernels/fresnel.glsl).
+enum class Fresnel { Exact = 0, Schlick = 1, Lazanyi = 2 };
 
 // Roughness as the file gave it: an angle in degrees (m = tan) or the slope alpha itself.
 struct RoughnessRef {
@@ -79,6 +82,7 @@ struct DielectricInterface {
   ScalarRef ior;  // absolute index of the layer below
   RoughnessRef roughness;
   Distribution distribution = Distribution::Beckmann;
+  Fresnel fresnel = Fresnel::Exact;
   std::string node;
 };
 using LayerInterface = std::variant<DielectricInterface>;
@@ -117,6 +121,7 @@ struct ConductorNode {
   ColorRef n, k;  // absolute complex index
   RoughnessRef roughness;
   Distribution distribution = Distribution::Beckmann;
+  Fresnel fresnel = Fresnel::Exact;
   std::string node;
   std::string metal;  // the named metal n and k came from, if any
 };

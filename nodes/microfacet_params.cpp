@@ -18,6 +18,12 @@ void add_microfacet_params(NodeDecl& decl) {
                             .one_of({"beckmann", "blinn", "ggx"})
                             .or_default(std::string("beckmann"))
                             .described("microfacet distribution: Beckmann, normalised Blinn (e = 2/m^2 - 2) or GGX"));
+  decl.params.push_back(
+      param("fresnel", ValueType::Enum)
+          .one_of({"exact", "schlick", "lazanyi"})
+          .or_default(std::string("exact"))
+          .described("Fresnel term F: exact (the Fresnel equations), schlick (Schlick 1994, F0 from the exact term at "
+                     "normal incidence) or lazanyi (Lazanyi and Szirmay-Kalos 2005 as in Elek 2010, App. B)"));
   decl.alternatives.push_back({{{"roughness_deg"}, {"alpha"}}, true});
 }
 

@@ -1,4 +1,4 @@
-// Roughness and distribution parameters shared by every microfacet node (interfaces, conductors).
+// Roughness, distribution and Fresnel parameters shared by every microfacet node (interfaces, conductors).
 #pragma once
 
 #include "graph/node_decl.h"
@@ -10,7 +10,8 @@ namespace lamina {
 inline constexpr double kMaxRoughnessDeg = 45.0;
 inline constexpr double kMaxAlpha = 1.0;
 
-// Adds roughness_deg | alpha (at most one; default: smooth) and distribution to `decl`.
+// Adds roughness_deg | alpha (at most one; default: smooth), distribution and fresnel to `decl`.
+// Every microfacet node has a Fresnel term, so the choice of its form is declared here, once.
 void add_microfacet_params(NodeDecl& decl);
 
 }  // namespace lamina

@@ -1,5 +1,5 @@
-// substrate/conductor: a rough metal, Torrance-Sparrow with the exact conductor Fresnel term
-// (course sec. 2.1). Metals are opaque, so a conductor is always the bottom of a stack.
+// substrate/conductor: a rough metal, Torrance-Sparrow with the conductor Fresnel term (exact by
+// default; course sec. 2.1). Metals are opaque, so a conductor is always the bottom of a stack.
 #include "nodes/metals.h"
 #include "nodes/microfacet_params.h"
 

@@ -1,6 +1,7 @@
 // lamina plot FILE --material NAME -o OUT.png: a picture of a material for people. Four in-plane
 // BRDF slices (log10 f per channel against the light's angle, for views at 0, 30, 60 and 80
-// degrees) beside a sphere lit by one directional light. Deterministic for the same input.
+// degrees, at one uv) beside a sphere lit by one directional light and a dim uniform sky.
+// Deterministic for the same input.
 #include <unistd.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -31,10 +32,23 @@ constexpr int kMinSize = 800;
 constexpr int kMaxSize = 8192;
 constexpr int kDefaultSize = 1600;
 
+// The uniform sky around the sphere, as a radiance: a white Lambertian surface shows this much on
+// top of the light. Without it a smooth metal is black wherever it does not mirror the light.
+constexpr float kDefaultAmbient = 0.15f;
+constexpr float kMaxAmbient = 10.0f;
+// The sky's reflection, Evaluator::albedo: for an untextured material, which is isotropic, a table
+// over cos(theta_o) of this many intervals, with this many points per lobe...
+constexpr int kSkyTableSize = 256;
+constexpr int kSkyTablePoints = 256;
+// ... and for a textured one once per pixel, with this many.
+constexpr int kSkyPixelPoints = 16;
+
 struct PlotOptions {
   MaterialArg material;
   std::string output;
   int size = kDefaultSize;
+  std::string uv = "0,0";
+  float ambient = kDefaultAmbient;
 };
 
 // --- colours (display-referred sRGB values, as written to the file) ------------------------------
@@ -173,7 +187,7 @@ struct Slice {
 };
 
 // Light directions in the plane of incidence (x, z): theta_i > 0 on the mirror side of the view.
-std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator) {
+std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator, vec2 uv) {
   std::vector<Slice> slices;
   int count = int(std::lround(2.0f * kThetaLimit / kThetaStep)) + 1;
   for (float theta_o : kViewAngles) {
@@ -181,6 +195,7 @@ std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator) {
     double o = double(theta_o) * kPi / 180.0;
     vec3 wo(float(std::sin(o)), 0.0f, float(std::cos(o)));
     std::vector<vec3> wi, wos(size_t(count), wo);
+    std::vector<vec2> uvs(size_t(count), uv);
     for (int k = 0; k < count; ++k) {
       float theta_i = -kThetaLimit + kThetaStep * float(k);
       double t = double(theta_i) * kPi / 180.0;
@@ -188,7 +203,7 @@ std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator) {
       wi.push_back(vec3(float(-std::sin(t)), 0.0f, float(std::cos(t))));
     }
     s.f.resize(size_t(count));
-    evaluator.eval(wi, wos, {}, s.f);
+    evaluator.eval(wi, wos, uvs, s.f);
     slices.push_back(std::move(s));
   }
   return slices;
@@ -305,9 +320,13 @@ float srgb_decode(float encoded) {
 }
 
 // An orthographic view down -z of the unit sphere, one directional light from the upper left with
-// irradiance pi (a white Lambertian surface facing it shows 1), exposure 1, clipped, sRGB.
-// 4 x 4 samples per pixel; rows are shared among threads, each pixel computed on its own.
-void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec3 background) {
+// irradiance pi (a white Lambertian surface facing it shows 1), plus a uniform sky of radiance
+// `ambient`, which a surface reflects as ambient times its directional albedo at wo (the albedo is
+// the reflection of a uniform unit environment), exposure 1, clipped, sRGB. 4 x 4 samples per
+// pixel for the light; the sky's term from a table over cos(theta_o) for untextured materials, else
+// once per pixel at its first sample on the sphere. Rows are shared among threads, each pixel
+// computed on its own.
+void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec3 background, float ambient) {
   const vec3 light = glm::normalize(vec3(-1.0f, 1.0f, 1.0f));
   const vec3 view(0.0f, 0.0f, 1.0f);
   const float irradiance = float(kPi), exposure = 1.0f;
@@ -316,9 +335,23 @@ void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec
   float radius = 0.5f * float(diameter);
   float cx = 0.5f * float(area.x0 + area.x1), cy = 0.5f * float(area.y0 + area.y1);
   vec3 background_linear(srgb_decode(background.r), srgb_decode(background.g), srgb_decode(background.b));
+  std::vector<vec3> sky_table;
+  if (ambient > 0.0f && evaluator.program().ops.empty())
+    for (int i = 0; i <= kSkyTableSize; ++i) {
+      float c = float(i) / float(kSkyTableSize);
+      vec3 wo(std::sqrt(std::max(0.0f, 1.0f - c * c)), 0.0f, c);
+      sky_table.push_back(ambient * evaluator.albedo(ShadingContext{}, wo, kSkyTablePoints));
+    }
+  auto sky_at = [&](const ShadingContext& ctx, vec3 wo) {
+    if (sky_table.empty()) return ambient * evaluator.albedo(ctx, wo, kSkyPixelPoints);
+    float t = std::clamp(wo.z, 0.0f, 1.0f) * float(kSkyTableSize);
+    int i = std::min(int(t), kSkyTableSize - 1);
+    return glm::mix(sky_table[size_t(i)], sky_table[size_t(i + 1)], t - float(i));
+  };
   auto shade_row = [&](int y) {
     for (int x = area.x0; x < area.x1; ++x) {
-      vec3 sum(0.0f);
+      vec3 sum(0.0f), sky(0.0f);
+      bool have_sky = false;
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           float sx = (float(x) + (float(i) + 0.5f) / float(n) - cx) / radius;
@@ -340,6 +373,11 @@ void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec
           ctx.view_distance = 1.0f;
           vec3 wi = frame.to_local(light), wo = frame.to_local(view);
           vec3 radiance = wi.z > 0.0f ? evaluator.eval(ctx, wi, wo) * wi.z * irradiance : vec3(0.0f);
+          if (ambient > 0.0f && !have_sky) {
+            sky = sky_at(ctx, wo);
+            have_sky = true;
+          }
+          radiance += sky;
           vec3 display = glm::clamp(radiance * exposure, vec3(0.0f), vec3(1.0f));
           if (!std::isfinite(display.r + display.g + display.b)) display = vec3(0.0f);
           sum += display;
@@ -358,12 +396,12 @@ void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec
 }
 
 void draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
-                 bool& text_ok) {
+                 vec2 uv, float ambient, bool& text_ok) {
   const int width = image.spec().width, height = image.spec().height;
   Layout l{double(width) / 1600.0};
   Canvas canvas(width, height, kFigureBackground);
 
-  std::vector<Slice> slices = compute_slices(evaluator);
+  std::vector<Slice> slices = compute_slices(evaluator, uv);
   Decades range = value_range(slices);
   int top = l.px(92);
   int split = l.px(960);
@@ -375,7 +413,7 @@ void draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   Rect sphere{split + l.px(20), top + l.px(44), width - l.px(20), height - l.px(44)};
   int side = std::min(sphere.x1 - sphere.x0, sphere.y1 - sphere.y0);
   int sx0 = (sphere.x0 + sphere.x1 - side) / 2, sy0 = (sphere.y0 + sphere.y1 - side) / 2;
-  draw_sphere(canvas, evaluator, {sx0, sy0, sx0 + side, sy0 + side}, kSphereBackground);
+  draw_sphere(canvas, evaluator, {sx0, sy0, sx0 + side, sy0 + side}, kSphereBackground, ambient);
 
   std::vector<SliceGeometry> geometry;
   for (size_t i = 0; i < slices.size(); ++i) {
@@ -400,7 +438,11 @@ void draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   const std::string intro = "In-plane BRDF slices, log10 f (1/sr) per channel:";
   const char* names[] = {"red", "green", "blue"};
   std::string rest = "(white where they agree); dashed: mirror direction";
-  if (!program.ops.empty()) rest += "; textured: slices at uv = 0, 0";
+  if (!program.ops.empty()) {
+    char at[80];
+    std::snprintf(at, sizeof at, "; textured: slices at uv = %g, %g", double(uv.x), double(uv.y));
+    rest += at;
+  }
   int legend_y = l.px(74), swatch = l.px(22), gap = l.px(6), space = l.px(14);
   auto legend_width = [&](int size) {
     int w = text.width(intro, size) + text.width(rest, size);
@@ -425,10 +467,17 @@ void draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
 
   int centre = (sphere_panel.x0 + sphere_panel.x1) / 2;
   int panel_width = sphere_panel.x1 - sphere_panel.x0 - 2 * margin;
-  text.draw(centre, top + l.px(30), "sphere, one directional light from the upper left", l.font(18), kText, 0, true,
-            panel_width);
-  text.draw(centre, height - l.px(16), "orthographic; light along (-1, 1, 1); radiance = f cos_i pi, exposure 1, sRGB",
-            l.font(15), kTextDim, 0, false, panel_width);
+  text.draw(centre, top + l.px(30),
+            ambient > 0.0f ? "sphere: one directional light from the upper left, a dim uniform sky"
+                           : "sphere: one directional light from the upper left",
+            l.font(18), kText, 0, true, panel_width);
+  char footer[160];
+  if (ambient > 0.0f)
+    std::snprintf(footer, sizeof footer, "orthographic; light along (-1, 1, 1); radiance = pi f cos_i + %g albedo(wo)",
+                  double(ambient));
+  else
+    std::snprintf(footer, sizeof footer, "orthographic; light along (-1, 1, 1); radiance = pi f cos_i");
+  text.draw(centre, height - l.px(16), footer, l.font(15), kTextDim, 0, false, panel_width);
   text_ok = text.ok();
 }
 
@@ -438,6 +487,13 @@ int run_plot(const PlotOptions& o) {
               << "] (the width in pixels; the height is half of it)\n";
     return kExitInvalid;
   }
+  if (!(o.ambient >= 0.0f && o.ambient <= kMaxAmbient)) {
+    std::cerr << "lamina: --ambient: " << o.ambient << " is outside [0, " << kMaxAmbient
+              << "] (the radiance of the uniform sky; 0 for the light alone)\n";
+    return kExitInvalid;
+  }
+  auto uv = parse_numbers("--uv", o.uv, 2);
+  if (!uv) return kExitInvalid;
   fs::path output(o.output);
   std::string format = output.extension().string();
   if (!format.empty()) format.erase(0, 1);
@@ -466,7 +522,7 @@ int run_plot(const PlotOptions& o) {
   OIIO::ImageSpec spec(o.size, o.size / 2, 3, OIIO::TypeDesc::FLOAT);
   OIIO::ImageBuf image(spec);
   bool text_ok = true;
-  draw_figure(image, *evaluator, o.material.file, fonts, text_ok);
+  draw_figure(image, *evaluator, o.material.file, fonts, vec2((*uv)[0], (*uv)[1]), o.ambient, text_ok);
   if (!text_ok) {
     std::cerr << "lamina: cannot draw the labels with " << fonts.regular << ": " << image.geterror() << "\n";
     return kExitIo;
@@ -500,10 +556,17 @@ void add_plot(CLI::App& app, Runner& runner) {
   cmd->add_option("-o,--output", o->output, "the image to write, e.g. plot.png (any format OpenImageIO writes)")
       ->required();
   cmd->add_option("--size", o->size, "image width in pixels; the height is half of it")->capture_default_str();
+  cmd->add_option("--uv", o->uv, "texture coordinates U,V of the slices (textured materials)")->capture_default_str();
+  cmd->add_option("--ambient", o->ambient,
+                  "radiance of the uniform sky around the sphere, in [0, 10]; 0 for the directional light alone")
+      ->capture_default_str();
   cmd->footer(
       "The slices show log10 f per channel in the plane of incidence, against the light's angle theta_i from the "
-      "normal (positive on the mirror side), for views at 0, 30, 60 and 80 degrees. The sphere is lit by one "
-      "directional light from the upper left and seen orthographically. Nothing is written for an invalid file.");
+      "normal (positive on the mirror side), for views at 0, 30, 60 and 80 degrees, at one uv. The sphere is lit by "
+      "one directional light from the upper left (irradiance pi: a white Lambertian surface facing it shows 1) and a "
+      "dim uniform sky (--ambient; a surface reflects it as ambient times its directional albedo, so smooth metals "
+      "show their colour away from the highlight), seen orthographically; uv follows longitude and latitude. Nothing "
+      "is written for an invalid file.");
   cmd->callback([o, &runner] { runner = [o] { return run_plot(*o); }; });
 }
 

@@ -24,6 +24,11 @@ for file in examples/materials/*.json; do
   echo "$row"
 done
 echo
+echo "== lamina eval: f (R G B, 1/sr, no cosine) and pdf of every example, light 30 deg off the normal, view 45 deg on the other side"
+for file in examples/materials/*.json; do
+  printf '%-24s %s\n' "$(basename "$file" .json)" "$($lamina eval "$file" --wi 0.5,0,0.8660254 --wo -0.7071068,0,0.7071068)"
+done
+echo
 plots=build/plots
 mkdir -p "$plots"
 echo "== lamina plot: BRDF slices and a lit sphere of every example, in $plots/"

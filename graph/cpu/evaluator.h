@@ -6,6 +6,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ inline constexpr int kMaxStackNodes = 64;
 inline constexpr int kMaxSlots = 256;
 inline constexpr int kMaxLobes = 64;
 
+// Immutable once built: every member function is const and safe to call from many threads at once.
+// A material without texture nodes has its parameters resolved once, at construction; a textured
+// one resolves them at each shading point (once per run of equal uvs in the batch forms).
 class Evaluator {
  public:
   // Throws std::length_error when the program exceeds the limits above.
@@ -41,6 +45,7 @@ class Evaluator {
 
   glm::vec3 eval(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
   float pdf(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
+  // eval and pdf together, bit for bit what the two return apart, sharing the work at one point.
   EvalPdf eval_pdf(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
   // u: two uniform numbers for the lobe's direction; u_lobe: one for choosing the lobe.
   Sample sample(const ShadingContext& ctx, glm::vec3 wo, glm::vec2 u, float u_lobe) const;
@@ -48,11 +53,16 @@ class Evaluator {
   // quadrature: each lobe's sampler driven by a Hammersley point set, combined as the mixture.
   glm::vec3 albedo(const ShadingContext& ctx, glm::vec3 wo, int points_per_lobe = 1024) const;
 
-  // Batches over structure-of-arrays spans of equal length; uv may be empty (uv = 0).
+  // Batches over structure-of-arrays spans: query i is (wi[i], wo[i]) at uv[i] (the other fields
+  // of the ShadingContext at their defaults). Every span has the length of the output; uv may
+  // also be empty (uv = 0 for all). Other lengths throw std::invalid_argument. Each result is
+  // bit for bit the single-query form's.
   void eval(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
             std::span<glm::vec3> f) const;
   void pdf(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
            std::span<float> pdf) const;
+  void eval_pdf(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
+                std::span<EvalPdf> out) const;
   void sample(std::span<const glm::vec3> wo, std::span<const glm::vec2> u, std::span<const float> u_lobe,
               std::span<const glm::vec2> uv, std::span<Sample> out) const;
 
@@ -66,19 +76,12 @@ class Evaluator {
   // registers have the same BRDF, which back ends that bake textures use to group texels.
   std::vector<float> texture_registers(const ShadingContext& ctx) const;
 
-  struct Resolved;  // parameters at one shading point (evaluator.cpp)
+  struct Plan;  // the stack as the evaluator walks it, built once (evaluator.cpp)
 
  private:
-  struct LobeFrame;  // wo and indices seen in a lobe's own frame (evaluator.cpp)
-
-  void resolve(const ShadingContext& ctx, Resolved& r) const;
-  glm::vec3 eval_resolved(const Resolved& r, glm::vec3 wi, glm::vec3 wo) const;
-  float pdf_resolved(const Resolved& r, glm::vec3 wi, glm::vec3 wo) const;
-  int weights_resolved(const Resolved& r, glm::vec3 wo, float* weights, LobeFrame* frames) const;
-  glm::vec3 eval_node(const Resolved& r, int node, glm::vec3 l, glm::vec3 v, float n_above, float m_above) const;
-
   Program program_;
   std::vector<Lobe> lobes_;
+  std::shared_ptr<const Plan> plan_;
 };
 
 }  // namespace lamina::cpu

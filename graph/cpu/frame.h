@@ -11,8 +11,10 @@ struct Frame {
   glm::vec3 bitangent{0.0f, 1.0f, 0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
 
-  // Orthonormalises `tangent` against `normal` (Gram-Schmidt); when the tangent is missing or
-  // parallel to the normal, picks one (Duff et al. 2017, "Building an orthonormal basis, revisited").
+  // The frame of a surface with world-space `normal` and `tangent` (neither need be unit length):
+  // the tangent orthonormalised against the normal (Gram-Schmidt), bitangent = normal x tangent
+  // (right-handed). When the tangent is missing or within about 1e-6 rad of the normal, picks one
+  // (Duff et al. 2017, "Building an orthonormal basis, revisited").
   static Frame from_normal_tangent(glm::vec3 normal, glm::vec3 tangent);
 
   glm::vec3 to_local(glm::vec3 w) const { return {glm::dot(w, tangent), glm::dot(w, bitangent), glm::dot(w, normal)}; }

@@ -45,11 +45,26 @@ LAMINA_FN vec3 fresnel_conductor(float cos_i, vec3 eta, vec3 k) {
   return 0.5f * (r_s + r_p);
 }
 
-// Schlick 1994, eq. 24.
+// Schlick 1994, eq. 24: F = F0 + (1 - F0) (1 - cos)^5, F0 the reflectance at normal incidence.
 LAMINA_FN float fresnel_schlick(float cos_i, float f0) {
   float q = 1.0f - clamp(cos_i, 0.0f, 1.0f);
   float q2 = q * q;
   return f0 + (1.0f - f0) * q2 * q2 * q;
+}
+
+// The same per channel.
+LAMINA_FN vec3 fresnel_schlick_rgb(float cos_i, vec3 f0) {
+  float q = 1.0f - clamp(cos_i, 0.0f, 1.0f);
+  float q2 = q * q;
+  return f0 + (1.0f - f0) * (q2 * q2 * q);
+}
+
+// The exact reflectance at normal incidence of a boundary to the complex relative index eta + i k:
+// fresnel_conductor at cos_i = 1, where r_s = r_p (Born and Wolf, Principles of Optics, sec. 14.2):
+// F0 = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2). For k = 0 it is the dielectric ((eta-1)/(eta+1))^2.
+LAMINA_FN vec3 conductor_f0(vec3 eta, vec3 k) {
+  vec3 k2 = k * k;
+  return ((eta - 1.0f) * (eta - 1.0f) + k2) / max((eta + 1.0f) * (eta + 1.0f) + k2, vec3(LAMINA_MIN_DENOM));
 }
 
 // Lazanyi and Szirmay-Kalos 2005, as coded in Elek 2010, App. B (Elek sec. 3.1: within 5 % of the exact term):
@@ -60,4 +75,52 @@ LAMINA_FN vec3 fresnel_lazanyi(float cos_i, vec3 n, vec3 k) {
   vec3 num = (n - 1.0f) * (n - 1.0f) + 4.0f * n * (q2 * q2 * q) + k * k;
   vec3 den = (n + 1.0f) * (n + 1.0f) + k * k;
   return num / max(den, vec3(LAMINA_MIN_DENOM));
+}
+
+// --- the Fresnel term a node selects (its `fresnel` parameter) ------------------------------------
+// 0 exact (the default), 1 Schlick, 2 Lazanyi-Szirmay-Kalos; other values give the exact term.
+
+// The cosine the Schlick-type approximations of a dielectric boundary take. Schlick's polynomial
+// describes light arriving from the optically rarer side; light arriving from the denser side
+// (eta < 1) uses the cosine of the refracted direction instead, which lies on the rarer side, and
+// total internal reflection gives F = 1 (de Greve 2006, "Reflections and Refractions in Ray
+// Tracing", Schlick approximation, for n1 > n2). So the approximations, like the exact term, give
+// the same F on both sides of a boundary for the two directions Snell's law connects.
+// Returns cos_i for eta >= 1, cos_t = sqrt(1 - (1 - cos_i^2) / eta^2) for eta < 1, and -1 under
+// total internal reflection.
+LAMINA_FN float lamina_rarer_side_cosine(float cos_i, float eta) {
+  float c = clamp(cos_i, 0.0f, 1.0f);
+  if (eta >= 1.0f) return c;
+  float sin2_t = (1.0f - c * c) / (eta * eta);
+  if (sin2_t >= 1.0f) return -1.0f;
+  return sqrt(1.0f - sin2_t);
+}
+
+// A dielectric boundary of relative index eta. Approximations: Schlick with F0 = ((eta-1)/(eta+1))^2;
+// Lazanyi and Szirmay-Kalos (fresnel_lazanyi) with k = 0, which is algebraically the same polynomial,
+// since (eta + 1)^2 - (eta - 1)^2 = 4 eta. Both at lamina_rarer_side_cosine. As the exact term: 0 for
+// an index-matched boundary (eta = 1; Schlick's polynomial would still give (1 - cos)^5 there), 1
+// for eta <= 0.
+LAMINA_FN float lamina_fresnel_dielectric(int mode, float cos_i, float eta) {
+  if (mode != 1 && mode != 2) return fresnel_dielectric(cos_i, eta);
+  if (eta == 1.0f) return 0.0f;
+  if (eta <= 0.0f) return 1.0f;
+  float c = lamina_rarer_side_cosine(cos_i, eta);
+  if (c < 0.0f) return 1.0f;
+  if (mode == 1) {
+    float r = (eta - 1.0f) / (eta + 1.0f);
+    return fresnel_schlick(c, r * r);
+  }
+  return fresnel_lazanyi(c, vec3(eta), vec3(0.0f)).x;
+}
+
+// A conductor of complex relative index eta + i k. Schlick interpolates from the exact reflectance
+// at normal incidence (conductor_f0); Lazanyi and Szirmay-Kalos is Elek's App. B form. The two are
+// algebraically equal, as (eta + 1)^2 + k^2 - (eta - 1)^2 - k^2 = 4 eta makes 1 - F0 the coefficient
+// of (1 - cos)^5 in both, and differ only in float rounding (the error-compensation term Lazanyi and
+// Szirmay-Kalos 2005 go on to add for metals is not in Elek's listing, so not here either).
+LAMINA_FN vec3 lamina_fresnel_conductor(int mode, float cos_i, vec3 eta, vec3 k) {
+  if (mode == 1) return fresnel_schlick_rgb(cos_i, conductor_f0(eta, k));
+  if (mode == 2) return fresnel_lazanyi(cos_i, eta, k);
+  return fresnel_conductor(cos_i, eta, k);
 }

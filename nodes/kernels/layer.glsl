@@ -42,8 +42,11 @@ LAMINA_FN float refraction_jacobian(float cos_above, float cos_below, float eta)
 // (Weidlich and Wilkie course, eqs. 3.2, 3.4 and 3.5; Elek 2010, eq. 3):
 // a = exp(-sigma d (1/cos_l + 1/cos_v)), cos_l and cos_v of the refracted directions.
 // 0 if a cosine is <= 0. A negative optical depth (sigma d < 0) is treated as 0, never as gain.
+// A layer without thickness (a clear medium) gives exactly the 1 the exponential would, without
+// computing it.
 LAMINA_FN vec3 absorption(vec3 sigma, float thickness, float cos_l, float cos_v) {
   if (cos_l <= 0.0f || cos_v <= 0.0f) return vec3(0.0f);
+  if (thickness == 0.0f) return vec3(1.0f);
   float path = thickness * (1.0f / max(cos_l, LAMINA_MIN_DENOM) + 1.0f / max(cos_v, LAMINA_MIN_DENOM));
   return exp(-max(sigma * path, vec3(0.0f)));
 }

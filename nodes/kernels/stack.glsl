@@ -22,15 +22,16 @@ LAMINA_FN float lamina_symmetric_dot(vec3 l, vec3 v, vec3 h) { return 0.5f * (do
 
 // One interface of the recursion f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i (course
 // sec. 3.1, Elek eq. 2). Returns f_i, the Torrance-Sparrow reflection of the interface with F_i
-// at V.H. l_below and v_below receive L' and V' (z <= 0 when either cannot refract: then nothing
-// below contributes), carry receives T_i a_i t_i with T_i = 1 - F_i, a_i the Beer-Lambert
-// absorption (Elek eq. 3) and t_i = (1 - G_i) + T_i G_i (Elek eq. 4).
-LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution, float m, vec3 sigma,
-                                     float thickness, LAMINA_OUT(vec3) l_below, LAMINA_OUT(vec3) v_below,
-                                     LAMINA_OUT(vec3) carry) {
+// at V.H (the Fresnel term `fresnel` selects: lamina_fresnel_dielectric). l_below and v_below
+// receive L' and V' (z <= 0 when either cannot refract: then nothing below contributes), carry
+// receives T_i a_i t_i with T_i = 1 - F_i, a_i the Beer-Lambert absorption (Elek eq. 3) and
+// t_i = (1 - G_i) + T_i G_i (Elek eq. 4).
+LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution, int fresnel_mode, float m,
+                                     vec3 sigma, float thickness, LAMINA_OUT(vec3) l_below,
+                                     LAMINA_OUT(vec3) v_below, LAMINA_OUT(vec3) carry) {
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
-  float fresnel = fresnel_dielectric(v_dot_h, eta);
+  float fresnel = lamina_fresnel_dielectric(fresnel_mode, v_dot_h, eta);
   float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   l_below = refract_down(l, eta);
@@ -43,12 +44,13 @@ LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution
   return torrance_sparrow(vec3(fresnel), d, g, l.z, v.z);
 }
 
-// A rough conductor base: Torrance-Sparrow with the exact conductor Fresnel at V.H; eta and k are
-// the metal's index relative to the medium above it (Elek's shader uses the absolute one).
-LAMINA_FN vec3 lamina_conductor_eval(vec3 l, vec3 v, vec3 eta, vec3 k, int distribution, float m) {
+// A rough conductor base: Torrance-Sparrow with the conductor Fresnel term at V.H (the one
+// `fresnel_mode` selects: lamina_fresnel_conductor); eta and k are the metal's index relative to
+// the medium above it (Elek's shader uses the absolute one).
+LAMINA_FN vec3 lamina_conductor_eval(vec3 l, vec3 v, vec3 eta, vec3 k, int distribution, int fresnel_mode, float m) {
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
-  vec3 fresnel = fresnel_conductor(v_dot_h, eta, k);
+  vec3 fresnel = lamina_fresnel_conductor(fresnel_mode, v_dot_h, eta, k);
   float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   return torrance_sparrow(fresnel, d, g, l.z, v.z);
@@ -62,9 +64,11 @@ LAMINA_FN vec3 lamina_lambert_eval(vec3 l, vec3 v, vec3 albedo) {
 // Lobe selection (course sec. 3.2.3) estimates each lobe's share at wo: its Fresnel reflectance
 // or albedo times what the layers above let through twice. One layer of that product: returns wo
 // refracted below an interface of relative index eta (z <= 0 when it cannot enter) and sets
-// factor = (1 - F(cos wo))^2 times the luminance of the absorption along the refracted wo.
-LAMINA_FN vec3 lamina_selection_step(vec3 v, float eta, vec3 sigma, float thickness, LAMINA_OUT(float) factor) {
-  float f0 = fresnel_dielectric(v.z, eta);
+// factor = (1 - F(cos wo))^2 times the luminance of the absorption along the refracted wo, with the
+// interface's Fresnel term (fresnel_mode, as in lamina_interface_eval).
+LAMINA_FN vec3 lamina_selection_step(vec3 v, float eta, int fresnel_mode, vec3 sigma, float thickness,
+                                     LAMINA_OUT(float) factor) {
+  float f0 = lamina_fresnel_dielectric(fresnel_mode, v.z, eta);
   vec3 below = refract_down(v, eta);
   factor = 0.0f;
   if (below.z > 0.0f) factor = lamina_sqr(1.0f - f0) * lamina_luminance(absorption(sigma, thickness, below.z, below.z));

@@ -1,5 +1,5 @@
 // Cost of the layered evaluation against a single Torrance-Sparrow conductor lobe, in one run.
-// Run: build/release/tests/bench/lamina_bench   (the ratios are printed as counters)
+// Run: bash tools/run_bench.sh (prints the ratios), or build/release/tests/bench/lamina_bench.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -74,6 +74,16 @@ void eval_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) {
   state.SetItemsProcessed(state.iterations() * int64_t(kQueries));
 }
 
+void eval_pdf_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) {
+  const Queries& q = queries();
+  std::vector<lamina::cpu::EvalPdf> out(kQueries);
+  for (auto _ : state) {
+    e.eval_pdf(q.wi, q.wo, {}, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * int64_t(kQueries));
+}
+
 void sample_scalar(benchmark::State& state, const lamina::cpu::Evaluator& e) {
   const Queries& q = queries();
   lamina::ShadingContext ctx;
@@ -104,6 +114,9 @@ void BM_eval_house_paint_3_layers(benchmark::State& s) { eval_scalar(s, house_pa
 void BM_eval_batch_single_lobe(benchmark::State& s) { eval_batched(s, single()); }
 void BM_eval_batch_car_paint_2_layers(benchmark::State& s) { eval_batched(s, car_paint()); }
 void BM_eval_batch_house_paint_3_layers(benchmark::State& s) { eval_batched(s, house_paint()); }
+void BM_eval_pdf_batch_single_lobe(benchmark::State& s) { eval_pdf_batched(s, single()); }
+void BM_eval_pdf_batch_car_paint_2_layers(benchmark::State& s) { eval_pdf_batched(s, car_paint()); }
+void BM_eval_pdf_batch_house_paint_3_layers(benchmark::State& s) { eval_pdf_batched(s, house_paint()); }
 void BM_sample_single_lobe(benchmark::State& s) { sample_scalar(s, single()); }
 void BM_sample_car_paint_2_layers(benchmark::State& s) { sample_scalar(s, car_paint()); }
 void BM_sample_house_paint_3_layers(benchmark::State& s) { sample_scalar(s, house_paint()); }
@@ -116,6 +129,9 @@ BENCHMARK(BM_eval_house_paint_3_layers);
 BENCHMARK(BM_eval_batch_single_lobe);
 BENCHMARK(BM_eval_batch_car_paint_2_layers);
 BENCHMARK(BM_eval_batch_house_paint_3_layers);
+BENCHMARK(BM_eval_pdf_batch_single_lobe);
+BENCHMARK(BM_eval_pdf_batch_car_paint_2_layers);
+BENCHMARK(BM_eval_pdf_batch_house_paint_3_layers);
 BENCHMARK(BM_sample_single_lobe);
 BENCHMARK(BM_sample_car_paint_2_layers);
 BENCHMARK(BM_sample_house_paint_3_layers);

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cpu_test_support.h"
@@ -27,17 +28,30 @@ struct Example {
   std::filesystem::path file;
   cpu::Evaluator evaluator;
   bool textured;
+  bool bundled;  // an example of examples/materials; else a test material of tests/data/physics
 };
 
+// tests/data/physics/*.json, sorted: materials for what the examples leave out (GGX, normalised
+// Blinn, clamp_lower_roughness false, the approximate Fresnel terms, three distinct interfaces).
+std::vector<std::filesystem::path> physics_test_files() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / "tests" / "data" / "physics"))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every example and every physics test material; the suite runs on all of them.
 const std::vector<Example>& examples() {
   static const std::vector<Example> all = [] {
     std::vector<Example> list;
-    for (const auto& file : test::example_files()) {
-      cpu::Evaluator e = test::load_evaluator(file);
-      bool textured = !e.program().ops.empty();
-      list.push_back({file.stem().string(), file, std::move(e), textured});
-    }
-    REQUIRE(list.size() >= 17);
+    for (bool bundled : {true, false})
+      for (const auto& file : bundled ? test::example_files() : physics_test_files()) {
+        cpu::Evaluator e = test::load_evaluator(file);
+        bool textured = !e.program().ops.empty();
+        list.push_back({file.stem().string(), file, std::move(e), textured, bundled});
+      }
+    REQUIRE(list.size() >= 23);
     return list;
   }();
   return all;
@@ -217,19 +231,22 @@ std::vector<vec2> probe_uvs(const Example& example) {
 }
 
 // The model of Weidlich and Wilkie is only approximately energy conserving (README, "Energy"),
-// and these examples exceed 1 in the white furnace. Two causes, both properties of the model as
-// Elek's Algorithm 1 defines it, not of the implementation:
+// and these examples and test materials exceed 1 in the white furnace. Two causes, both properties
+// of the model as Elek's Algorithm 1 defines it, not of the implementation:
 //  - a glossy lobe below an interface of index n is evaluated at refracted directions, which
 //    squeezes the outer hemisphere into the refracted cone; its albedo seen from outside grows by
 //    up to n^2 (silver under n = 1.7: 0.97 * 0.93 * 2.89 = 2.6 for a lobe entirely inside the
-//    cone), largest at normal incidence;
+//    cone; the radiance factor 1/n^2 of crossing back out is not part of the model), largest at
+//    normal incidence;
 //  - T = 1 - F(V.H) rather than 1 - F(theta_o), so at grazing incidence the layers below receive
 //    far more than the Fresnel transmittance of the macro surface: the excess at 89 deg.
 // Each bound is the largest albedo measured over theta_o in 0..89 deg (and the probed uvs), plus
 // 3%, so a change in the model that adds energy fails here. Where it peaks is given beside it.
+// README ("Energy") lists the examples with the same numbers.
 const std::map<std::string, double>& documented_excess() {
   static const std::map<std::string, double> bounds = {
-      {"brass", 1.767 * 1.03},                // 0 deg, R: brass under IOR 1.5
+      {"acrylic_lacquer", 1.010 * 1.03},      // 89 deg, G: T = 1 - F(V.H) at grazing only
+      {"brass", 1.767 * 1.03},                // 0 deg, R: gold under IOR 2
       {"car_paint", 1.076 * 1.03},            // 89 deg, B
       {"ceramic_glaze", 1.801 * 1.03},        // 89 deg, B
       {"checker_tiles", 2.041 * 1.03},        // 0 deg, R, on a gold square
@@ -242,62 +259,113 @@ const std::map<std::string, double>& documented_excess() {
       {"red_lacquer", 1.689 * 1.03},          // 89 deg, R
       {"silver_paint", 2.399 * 1.03},         // 0 deg, R: silver under IOR 1.7
       {"sugar", 1.188 * 1.03},                // 89 deg, R
+      // Test materials (tests/data/physics), for the same two reasons.
+      {"blinn_glaze", 1.296 * 1.03},        // 89 deg, R
+      {"ggx_lacquer_metal", 1.104 * 1.03},  // 0 deg, B: a GGX metal under IOR 1.45
+      {"lazanyi_copper", 1.500 * 1.03},     // 0 deg, R
+      {"schlick_gold", 2.023 * 1.03},       // 0 deg, R: gold under IOR 1.5
+      {"three_interfaces", 1.322 * 1.03},   // 89 deg, R
+      {"unclamped_metal", 2.036 * 1.03},    // 0 deg, R: a narrow silver lobe under IOR 1.5
   };
   return bounds;
 }
 
+// A material without a documented excess may reach at most 1 + this, on an estimate accurate to
+// about 0.3%: where the default quadrature (1024 points per lobe, up to 3% low at grazing
+// incidence, see the next test) reads above kRefineAbove, Evaluator::albedo is computed again
+// with kRefinedPoints per lobe.
+constexpr double kUndocumentedTolerance = 0.005;
+constexpr double kRefineAbove = 0.95;
+constexpr int kRefinedPoints = 16384;
+
 }  // namespace
 
-TEST_CASE("every example's white furnace albedo is non-negative and within its documented bound") {
-  // Evaluator::albedo with its default 1024 Hammersley points per lobe; the tolerance of examples
-  // without a documented excess is for that quadrature only (about 1% near grazing, see the next
-  // test), not for the model.
-  const double tolerance = 0.02;
-  std::vector<double> angles;
-  for (int a = 0; a <= 85; a += 5) angles.push_back(double(a));
-  angles.push_back(89.0);
-  std::string report = "white furnace: directional albedo (R, G, B) at theta_o (deg), Evaluator::albedo\n";
+TEST_CASE("every example's white furnace albedo at 0..89 deg is non-negative and within its documented bound") {
+  // Every degree from 0 to 89 (every third under the sanitisers, and 89).
+  std::vector<int> angles;
+  for (int a = 0; a < 90; a += test::kSanitized ? 3 : 1) angles.push_back(a);
+  if (angles.back() != 89) angles.push_back(89);
+  std::string report =
+      "white furnace: directional albedo, largest channel (and over the probed uvs), Evaluator::albedo with 1024 "
+      "points per lobe; rows of 10 degrees from theta_o = 0; R G B at 0, 60, 85 and 89 deg\n";
   for (const Example& example : examples()) {
     CAPTURE(example.name);
     std::vector<vec2> uvs = probe_uvs(example);
-    report += example.name +
-              (example.textured ? " (largest over " + std::to_string(uvs.size()) + " uv per channel)" : "") + "\n";
+    auto documented = documented_excess().find(example.name);
+    const bool excess_documented = documented != documented_excess().end();
     long bad = 0;
-    double largest = 0.0;
-    std::string where;
-    for (double theta : angles) {
-      vec3 wo = test::to_float(test::spherical(test::radians(theta), 0.0));
+    double largest = 0.0, largest_checked = 0.0;
+    std::string where, where_checked;
+    std::map<int, vec3> by_angle;
+    for (int theta : angles) {
+      vec3 wo = test::to_float(test::spherical(test::radians(double(theta)), 0.0));
       vec3 most(0.0f);
       for (vec2 uv : uvs) {
         vec3 albedo = example.evaluator.albedo(at_uv(uv), wo);
         if (!finite(albedo) || !non_negative(albedo)) ++bad;
-        for (int c = 0; c < 3; ++c)
+        // Near or above 1, an undocumented material's value is checked on the finer quadrature.
+        vec3 checked = albedo;
+        if (!excess_documented && double(max_component(albedo)) > kRefineAbove)
+          checked = example.evaluator.albedo(at_uv(uv), wo, kRefinedPoints);
+        for (int c = 0; c < 3; ++c) {
+          char text[160];
+          std::snprintf(text, sizeof text, "theta_o %d deg, channel %c, uv (%.3f, %.3f)", theta, "RGB"[c], double(uv.x),
+                        double(uv.y));
           if (double(albedo[c]) > largest) {
             largest = double(albedo[c]);
-            char text[160];
-            std::snprintf(text, sizeof text, "theta_o %.0f deg, channel %c, uv (%.3f, %.3f)", theta, "RGB"[c],
-                          double(uv.x), double(uv.y));
             where = text;
           }
+          if (double(checked[c]) > largest_checked) {
+            largest_checked = double(checked[c]);
+            where_checked = text;
+          }
+        }
         most = glm::max(most, albedo);
       }
-      char line[200];
-      std::snprintf(line, sizeof line, "  %5.1f  %.4f %.4f %.4f\n", theta, double(most.x), double(most.y),
-                    double(most.z));
-      report += line;
+      by_angle[theta] = most;
     }
     CHECK(bad == 0);
-    auto documented = documented_excess().find(example.name);
-    double bound = documented == documented_excess().end() ? 1.0 + tolerance : documented->second;
-    CHECK_MESSAGE(largest <= bound, "largest albedo " << largest << " at " << where);
-    if (documented != documented_excess().end())
-      CHECK_MESSAGE(largest > 1.0 + tolerance, "no longer exceeds 1: drop it from documented_excess()");
-    report += "  largest " + std::to_string(largest) + " at " + where + "\n";
+    if (excess_documented) {
+      CHECK_MESSAGE(largest <= documented->second, "largest albedo " << largest << " at " << where);
+      CHECK_MESSAGE(largest > 1.0 + kUndocumentedTolerance,
+                    "no longer exceeds 1: drop it from documented_excess() and the README");
+    } else {
+      CHECK_MESSAGE(largest_checked <= 1.0 + kUndocumentedTolerance,
+                    "albedo " << largest_checked << " at " << where_checked << " (" << kRefinedPoints
+                              << " points per lobe) exceeds 1: find out why, then document it in "
+                                 "documented_excess() and the README");
+    }
+    char head[200];
+    std::snprintf(head, sizeof head, "%s%s: largest %.4f at %s%s\n", example.name.c_str(),
+                  example.bundled ? "" : " (test material)", largest, where.c_str(),
+                  example.textured ? (" (" + std::to_string(uvs.size()) + " uvs)").c_str() : "");
+    report += head;
+    std::string row;
+    for (size_t i = 0; i < angles.size(); ++i) {
+      if (angles[i] / 10 != (i == 0 ? -1 : angles[i - 1] / 10)) {
+        if (!row.empty()) report += row + "\n";
+        char label[16];
+        std::snprintf(label, sizeof label, "  %2d:", angles[i] / 10 * 10);
+        row = label;
+      }
+      char cell[16];
+      std::snprintf(cell, sizeof cell, " %.3f", double(max_component(by_angle[angles[i]])));
+      row += cell;
+    }
+    report += row + "\n  RGB:";
+    for (int theta : {0, 60, 85, 89}) {
+      if (!by_angle.count(theta)) continue;
+      vec3 a = by_angle[theta];
+      char cell[80];
+      std::snprintf(cell, sizeof cell, "  %d deg %.2f %.2f %.2f", theta, double(a.x), double(a.y), double(a.z));
+      report += cell;
+    }
+    report += "\n";
   }
   for (const auto& [name, bound] : documented_excess()) {
     bool known = false;
     for (const Example& example : examples()) known = known || example.name == name;
-    CHECK_MESSAGE(known, name << " in documented_excess() is not an example");
+    CHECK_MESSAGE(known, name << " in documented_excess() is not an example or test material");
   }
   MESSAGE(report);
 }
@@ -733,9 +801,14 @@ TEST_CASE("sample() returns eval() and pdf() of the direction it drew") {
 namespace {
 
 // The stack of an example, read from its JSON file directly (not through the library).
+struct Facet {
+  std::string distribution = "beckmann";  // beckmann, blinn, ggx
+  std::string fresnel = "exact";          // exact, schlick, lazanyi
+  double m = 0.0;                         // RMS slope: tan(roughness_deg), or alpha
+};
 struct Coat {
   double ior = 1.0;  // absolute index below the interface
-  double m = 0.0;    // Beckmann slope, tan(roughness_deg)
+  Facet facet;
   dvec3 sigma{0.0};  // absorption per unit length
   double d = 0.0;    // thickness
 };
@@ -744,18 +817,34 @@ struct Base {
   dvec3 albedo{0.0};
   double sigma = 0.0;
   dvec3 n{1.0}, k{0.0};
-  double m = 0.0;
+  Facet facet;
 };
 struct Stack {
   std::vector<Coat> coats;  // top first
   Base base;
+  bool clamp = true;  // Elek sec. 3: a lower slope is raised to the one above it
 };
 
 dvec3 read_color(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-Stack read_stack(const std::filesystem::path& file) {
+// The smooth limit: slopes below 1e-4 are raised to it (README, "The layered model").
+constexpr double kMinSlope = 1.0e-4;
+
+Facet read_facet(const nlohmann::json& node) {
+  Facet f;
+  if (node.contains("distribution")) f.distribution = node.at("distribution").get<std::string>();
+  if (node.contains("fresnel")) f.fresnel = node.at("fresnel").get<std::string>();
+  if (node.contains("alpha"))
+    f.m = node.at("alpha").get<double>();
+  else if (node.contains("roughness_deg"))
+    f.m = std::tan(test::radians(node.at("roughness_deg").get<double>()));
+  return f;
+}
+
+// A stack without mixes and textures; nothing for other materials.
+std::optional<Stack> read_stack(const std::filesystem::path& file) {
   nlohmann::json doc = nlohmann::json::parse(test::read_file(file));
   const nlohmann::json& material = doc.at("materials").at(0);
   std::map<std::string, nlohmann::json> nodes;
@@ -767,18 +856,19 @@ Stack read_stack(const std::filesystem::path& file) {
     REQUIRE(s.find('.') == std::string::npos);
     return nodes.at(s.substr(1));
   };
-  auto beckmann_slope = [](const nlohmann::json& node) {
-    REQUIRE((!node.contains("distribution") || node.at("distribution") == "beckmann"));
-    return std::tan(test::radians(node.at("roughness_deg").get<double>()));
-  };
+  for (const auto& [id, node] : nodes) {
+    std::string type = node.at("type").get<std::string>();
+    if (type == "mix" || type.rfind("texture/", 0) == 0 || type.rfind("math/", 0) == 0) return std::nullopt;
+  }
   Stack stack;
+  if (material.contains("clamp_lower_roughness")) stack.clamp = material.at("clamp_lower_roughness").get<bool>();
   const nlohmann::json* node = &deref(material.at("surface"));
   while (node->at("type") == "layer") {
     const nlohmann::json& interface = deref(node->at("interface"));
     REQUIRE(interface.at("type") == "interface/dielectric");
     Coat coat;
     coat.ior = interface.at("ior").get<double>();
-    coat.m = beckmann_slope(interface);
+    coat.facet = read_facet(interface);
     if (node->contains("medium")) {
       const nlohmann::json& medium = deref(node->at("medium"));
       if (medium.at("type") == "medium/absorbing") {
@@ -802,13 +892,15 @@ Stack read_stack(const std::filesystem::path& file) {
   } else {
     REQUIRE(type == "substrate/conductor");
     stack.base.kind = "conductor";
-    stack.base.m = beckmann_slope(*node);
+    stack.base.facet = read_facet(*node);
     if (node->contains("metal")) {
-      // The course's metal constants (SEEDS.md sec. 1, from the 'Type d) - Metal Foil' slide).
+      // The course's metal constants (SEEDS.md sec. 1, from the 'Type d) - Metal Foil' slide), and
+      // copper at 645, 525 and 445 nm from Hagemann, Gudat and Kunz 1974 (as nodes/metals.cpp).
       const std::map<std::string, std::pair<dvec3, dvec3>> metals = {
           {"gold", {{0.1, 0.42, 1.56}, {3.8, 2.5, 1.9}}},
           {"silver", {{0.14, 0.13, 0.157}, {4.44, 3.25, 2.40}}},
-          {"aluminium", {{1.94, 1.0, 0.6}, {8.21, 6.69, 4.86}}}};
+          {"aluminium", {{1.94, 1.0, 0.6}, {8.21, 6.69, 4.86}}},
+          {"copper", {{0.214, 1.037, 1.169}, {3.67, 2.59, 2.36}}}};
       auto it = metals.find(node->at("metal").get<std::string>());
       REQUIRE(it != metals.end());
       stack.base.n = it->second.first;
@@ -833,40 +925,105 @@ double fresnel(double cos_i, std::complex<double> eta) {
   return 0.5 * (std::norm(r_s) + std::norm(r_p));
 }
 
-// Beckmann, normalised (D cos_h integrates to 1): exp(-tan^2/m^2) / (pi m^2 cos^4).
-double beckmann(double cos_h, double m) {
-  if (cos_h <= 0.0) return 0.0;
-  double c2 = cos_h * cos_h;
-  return std::exp(-(1.0 - c2) / c2 / (m * m)) / (test::kPi * m * m * c2 * c2);
+double fifth(double x) { return x * x * x * x * x; }
+
+// A dielectric boundary of relative index eta under the node's `fresnel`: exact; Schlick 1994
+// (eq. 24) with F0 = ((eta-1)/(eta+1))^2; Lazanyi and Szirmay-Kalos as Elek App. B codes it,
+// ((n-1)^2 + 4 n (1-cos)^5 + k^2) / ((n+1)^2 + k^2) with k = 0. The approximations take the cosine
+// on the rarer side: from the denser side (eta < 1) the refracted one, and total internal
+// reflection gives 1 (de Greve 2006); no boundary (eta = 1) reflects nothing.
+double fresnel_dielectric(double cos_i, double eta, const std::string& mode) {
+  if (mode == "exact") return fresnel(cos_i, eta);
+  if (eta == 1.0) return 0.0;
+  double c = cos_i;
+  if (eta < 1.0) {
+    double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0) return 1.0;
+    c = std::sqrt(1.0 - sin2_t);
+  }
+  if (mode == "schlick") {
+    double f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
+    return f0 + (1.0 - f0) * fifth(1.0 - c);
+  }
+  REQUIRE(mode == "lazanyi");
+  return ((eta - 1.0) * (eta - 1.0) + 4.0 * eta * fifth(1.0 - c)) / ((eta + 1.0) * (eta + 1.0));
 }
 
-// GLSL refract(I, N, eta) (GLSL spec, sec. 8.5).
-dvec3 refract(const dvec3& i, const dvec3& n, double eta) {
-  double k = 1.0 - eta * eta * (1.0 - glm::dot(n, i) * glm::dot(n, i));
-  if (k < 0.0) return dvec3(0.0);
-  return eta * i - (eta * glm::dot(n, i) + std::sqrt(k)) * n;
+// A conductor of relative index n + ik: exact; Schlick from the exact reflectance at normal
+// incidence; Lazanyi and Szirmay-Kalos as Elek App. B codes it.
+double fresnel_conductor(double cos_i, double n, double k, const std::string& mode) {
+  if (mode == "exact") return fresnel(cos_i, std::complex<double>(n, k));
+  if (mode == "schlick") {
+    double f0 = fresnel(1.0, std::complex<double>(n, k));
+    return f0 + (1.0 - f0) * fifth(1.0 - cos_i);
+  }
+  REQUIRE(mode == "lazanyi");
+  return ((n - 1.0) * (n - 1.0) + 4.0 * n * fifth(1.0 - cos_i) + k * k) / ((n + 1.0) * (n + 1.0) + k * k);
+}
+
+// The normalised distributions, with tan^2 = sin^2 / cos^2 of the half vector:
+// Beckmann exp(-tan^2/m^2) / (pi m^2 cos^4) (Walter et al. 2007, eq. 25); normalised Blinn
+// (e + 2)/(2 pi) cos^e with e = 2/m^2 - 2 (course eq. 3.7); GGX a^2 / (pi cos^4 (a^2 + tan^2)^2)
+// with a = m (Walter et al. 2007, eq. 33).
+double distribution(const std::string& name, double cos_h, double tan2, double m) {
+  double c4 = cos_h * cos_h * cos_h * cos_h;
+  if (name == "beckmann") return std::exp(-tan2 / (m * m)) / (test::kPi * m * m * c4);
+  if (name == "blinn") {
+    double e = 2.0 / (m * m) - 2.0;
+    return (e + 2.0) / (2.0 * test::kPi) * std::pow(cos_h, e);
+  }
+  REQUIRE(name == "ggx");
+  return m * m / (test::kPi * c4 * (m * m + tan2) * (m * m + tan2));
+}
+
+// d ln D / d ln tan^2 of each distribution, for the float-noise estimate of Value.
+double log_sensitivity(const std::string& name, double tan2, double m) {
+  if (name == "beckmann") return tan2 / (m * m);
+  if (name == "blinn") return 0.5 * (2.0 / (m * m) - 2.0) * tan2 / (1.0 + tan2);
+  return 2.0 * tan2 / (m * m + tan2);
+}
+
+// The geometry term: the course's V-cavity min(1, 2 NH NV / VH, 2 NH NL / VH) for Beckmann and
+// Blinn; for GGX Smith's G1(l) G1(v), G1 = 2 / (1 + sqrt(1 + a^2 tan^2)) (Walter et al. 2007, eq. 34).
+double geometry(const std::string& name, const dvec3& l, const dvec3& v, const dvec3& h, double m) {
+  double nh = h.z, vh = glm::dot(v, h);
+  if (name != "ggx") return std::min(1.0, std::min(2.0 * nh * v.z / vh, 2.0 * nh * l.z / vh));
+  auto g1 = [&](double c) { return 2.0 / (1.0 + std::sqrt(1.0 + m * m * (1.0 - c * c) / (c * c))); };
+  return g1(l.z) * g1(v.z);
 }
 
 // The value plus an estimate of the error float evaluation cannot avoid: the evaluator computes
 // tan^2 = (h.x^2 + h.y^2) / h.z^2 from the half vector's components (d_microfacet_h), so relative
-// roundings e of those components change exp(-tan^2/m^2) / cos^4 by a factor of about
-// (2 tan^2 / m^2 + 4) e; e = 2.4e-7 (four float ulps) covers computing the half vector in float.
-// (From cos_h alone, 1 - cos^2 would cancel: 2e-3 for m = tan 1 deg near the peak.)
+// roundings e of those components change D by a factor of about (2 |d ln D / d ln tan^2| + 4) e
+// (for Beckmann, (2 tan^2 / m^2 + 4) e); e = 2.4e-7 (four float ulps) covers computing the half
+// vector in float. (From cos_h alone, 1 - cos^2 would cancel: 2e-3 for m = tan 1 deg near the peak.)
 struct Value {
   dvec3 f{0.0};
   dvec3 float_noise{0.0};
 };
 
-// Torrance-Sparrow: F D G / (4 cos_l cos_v), V-cavity G = min(1, 2 NH NV / VH, 2 NH NL / VH).
-Value torrance_sparrow(const dvec3& l, const dvec3& v, double m, const std::function<dvec3(double)>& fresnel_at) {
-  dvec3 h = glm::normalize(l + v);
+// How the transcription forms the half vector: exactly, in double, from the float directions it is
+// given (the default), or as the float evaluator does, normalize(l + v) in float arithmetic from
+// the directions rounded to float (then made unit length in double). The second feeds D, G and F
+// the direction the evaluator sees, so what remains is the error of evaluating them.
+enum class HalfVector { Exact, FloatRounded };
+
+dvec3 half_vector(const dvec3& l, const dvec3& v, HalfVector how) {
+  if (how == HalfVector::Exact) return glm::normalize(l + v);
+  return glm::normalize(test::to_double(glm::normalize(test::to_float(l) + test::to_float(v))));
+}
+
+// Torrance-Sparrow: F D G / (4 cos_l cos_v).
+Value torrance_sparrow(const dvec3& l, const dvec3& v, const Facet& facet, double m, HalfVector how,
+                       const std::function<dvec3(double)>& fresnel_at) {
+  dvec3 h = half_vector(l, v, how);
   double nh = h.z, vh = glm::dot(v, h);
   if (nh <= 0.0 || vh <= 0.0) return {};
-  double g = std::min(1.0, std::min(2.0 * nh * v.z / vh, 2.0 * nh * l.z / vh));
-  Value out;
-  out.f = fresnel_at(vh) * beckmann(nh, m) * g / (4.0 * l.z * v.z);
   double tan2 = (h.x * h.x + h.y * h.y) / (nh * nh);
-  out.float_noise = out.f * ((2.0 * tan2 / (m * m) + 4.0) * 2.4e-7);
+  Value out;
+  out.f = fresnel_at(vh) * distribution(facet.distribution, nh, tan2, m) * geometry(facet.distribution, l, v, h, m) /
+          (4.0 * l.z * v.z);
+  out.float_noise = out.f * ((2.0 * log_sensitivity(facet.distribution, tan2, m) + 4.0) * 2.4e-7);
   return out;
 }
 
@@ -895,55 +1052,83 @@ dvec3 oren_nayar(const dvec3& l, const dvec3& v, const dvec3& cs, double sigma) 
   return (l1 + l2) / cos_theta_i / test::kPi;
 }
 
+// GLSL refract(I, N, eta) (GLSL spec, sec. 8.5).
+dvec3 refract(const dvec3& i, const dvec3& n, double eta) {
+  double k = 1.0 - eta * eta * (1.0 - glm::dot(n, i) * glm::dot(n, i));
+  if (k < 0.0) return dvec3(0.0);
+  return eta * i - (eta * glm::dot(n, i) + std::sqrt(k)) * n;
+}
+
+// The slope a lobe uses below an interface of (already clamped) slope m_above.
+double effective_slope(const Stack& stack, double own, double m_above) {
+  return std::max(stack.clamp ? std::max(own, m_above) : own, kMinSlope);
+}
+
 // Everything below coat `index` seen from the medium of index n_above, whose interface had the
 // (already clamped) slope m_above.
-Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above);
+Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above,
+              HalfVector how);
 
 // Elek, Algorithm 1, for coat `index` over whatever lies below it:
 //   f = f1 + T12 f2(L', V') a t, f1 = TorranceSparrow at V.H with eta = n1 / n_above,
 //   L' = -refract(-L, N, 1/eta), T12 = T21 = 1 - F1, a = exp(-sigma d (1/N.L' + 1/N.V')),
 //   t = (1 - G1) + T21 G1; the slope below is clamped to max(m2, m1).
-Value elek_layer(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above) {
+Value elek_layer(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above,
+                 HalfVector how) {
   const Coat& coat = stack.coats[index];
   const double eta = coat.ior / n_above;
-  const double m1 = std::max(coat.m, m_above);
+  const double m1 = effective_slope(stack, coat.facet.m, m_above);
   const dvec3 n(0.0, 0.0, 1.0);
-  Value top = torrance_sparrow(l, v, m1, [&](double vh) { return dvec3(fresnel(vh, eta)); });
-  dvec3 h = glm::normalize(l + v);
-  double f1 = fresnel(glm::dot(v, h), eta);
-  double g1 = std::min(1.0, std::min(2.0 * h.z * v.z / glm::dot(v, h), 2.0 * h.z * l.z / glm::dot(v, h)));
+  auto fresnel_at = [&](double vh) { return fresnel_dielectric(vh, eta, coat.facet.fresnel); };
+  Value top = torrance_sparrow(l, v, coat.facet, m1, how, [&](double vh) { return dvec3(fresnel_at(vh)); });
+  dvec3 h = half_vector(l, v, how);
+  double f1 = fresnel_at(glm::dot(v, h));
+  double g1 = geometry(coat.facet.distribution, l, v, h, m1);
   dvec3 l_below = -refract(-l, n, 1.0 / eta), v_below = -refract(-v, n, 1.0 / eta);
   if (l_below.z <= 0.0 || v_below.z <= 0.0) return top;  // no light below (total internal reflection)
   double t12 = 1.0 - f1, t21 = t12;
   double t = (1.0 - g1) + t21 * g1;
   dvec3 a = glm::exp(-coat.sigma * coat.d * (1.0 / l_below.z + 1.0 / v_below.z));
-  Value below = layered(stack, index + 1, l_below, v_below, coat.ior, m1);
+  Value below = layered(stack, index + 1, l_below, v_below, coat.ior, m1, how);
   Value out;
   out.f = top.f + t12 * below.f * a * t;
   out.float_noise = top.float_noise + t12 * below.float_noise * a * t;
   return out;
 }
 
-Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above) {
-  if (index < stack.coats.size()) return elek_layer(stack, index, l, v, n_above, m_above);
+Value layered(const Stack& stack, size_t index, const dvec3& l, const dvec3& v, double n_above, double m_above,
+              HalfVector how) {
+  if (index < stack.coats.size()) return elek_layer(stack, index, l, v, n_above, m_above, how);
   const Base& base = stack.base;
   if (base.kind == "lambert") return {base.albedo / test::kPi, dvec3(0.0)};
   if (base.kind == "oren_nayar") return {oren_nayar(l, v, base.albedo, base.sigma), dvec3(0.0)};
   // Conductor: n + ik relative to the medium above it.
-  double m2 = std::max(base.m, m_above);
-  return torrance_sparrow(l, v, m2, [&](double vh) {
+  double m2 = effective_slope(stack, base.facet.m, m_above);
+  return torrance_sparrow(l, v, base.facet, m2, how, [&](double vh) {
     dvec3 f;
-    for (int c = 0; c < 3; ++c) f[c] = fresnel(vh, std::complex<double>(base.n[c], base.k[c]) / n_above);
+    for (int c = 0; c < 3; ++c)
+      f[c] = fresnel_conductor(vh, base.n[c] / n_above, base.k[c] / n_above, base.facet.fresnel);
     return f;
   });
 }
 
+// Cosines at and above this are "steep": away from grazing, where V.H, the refraction and
+// t = (1 - G) + T G are ill-conditioned.
+constexpr float kSteep = 0.05f;
+
 struct TranscriptionStats {
+  long pairs = 0;
   double max_relative = 0.0;        // max |got - ref| / |ref| over channels float can evaluate to 1e-5
-  double max_relative_all = 0.0;    // the same over all channels
+  double max_relative_all = 0.0;    // the same over all channels: the worst strict error
   double max_over_tolerance = 0.0;  // max |got - ref| / tolerance
   long limited = 0;                 // pairs where float conditioning allows more than 1e-5
-  std::string worst;
+  long strict = 0;                  // pairs within the strict 1e-5 (and its floors) in every channel
+  long strict_float_h = 0;          // the same against the transcription at the float half vector
+  double max_relative_float_h = 0.0;
+  long steep = 0;  // pairs with both cosines >= kSteep
+  long strict_steep = 0, strict_float_h_steep = 0;
+  double max_relative_steep = 0.0, max_relative_float_h_steep = 0.0;
+  std::string worst, worst_strict_float_h;
 };
 
 // One or two float ulps up or down per component, at random.
@@ -958,44 +1143,64 @@ vec3 nudge(vec3 w, std::mt19937_64& rng) {
 
 // Compares the evaluator with the transcription over random pairs: 60% spread over the hemisphere
 // (cosines down to 1e-4), 40% near the mirror direction (0.1 to 30 times the top slope, at most
-// 0.5 rad) to exercise the lobes. The tolerance is 1e-5 relative (floor 1e-7 of the pair's largest
-// channel, and 1e-20) plus what float evaluation cannot avoid: the Beckmann term's sensitivity to
-// the rounding of cos_h (Value::float_noise), and the spread of the transcription itself when its
-// inputs move by one or two float ulps, doubled (near-grazing pairs around the mirror direction are
-// ill-conditioned: V.H is a small difference there, and t = (1 - G) + T G cancels when G -> 1 and
-// T -> 0; one ulp of input can change f tenfold).
+// 0.5 rad) to exercise the lobes. The issue's bound is 1e-5 relative (floor 1e-7 of the pair's
+// largest channel, and 1e-20): the strict counts. The test's tolerance adds what float evaluation
+// cannot avoid: the distribution's sensitivity to the rounding of the half vector
+// (Value::float_noise), and the spread of the transcription itself when its inputs move by one or
+// two float ulps, doubled (near-grazing pairs around the mirror direction are ill-conditioned: V.H
+// is a small difference there, and t = (1 - G) + T G cancels when G -> 1 and T -> 0; one ulp of
+// input can change f tenfold).
 TranscriptionStats compare_with_transcription(const Example& example, const Stack& stack, int pairs) {
   std::mt19937_64 rng(0x5eed0008);
   TranscriptionStats stats;
-  double m_top = std::max(stack.coats.front().m, 1.0e-3);
+  stats.pairs = pairs;
+  double m_top = std::max(stack.coats.front().facet.m, 1.0e-3);
   for (int i = 0; i < pairs; ++i) {
     dvec3 wo_d = upper_direction(rng, nullptr, 0.0, 0.0, 0.0);
     dvec3 wi_d = upper_direction(rng, &wo_d, 0.4, 0.1 * m_top, std::min(30.0 * m_top, 0.5));
     vec3 wo = test::to_float(wo_d), wi = test::to_float(wi_d);
     // The transcription sees exactly the float directions the evaluator gets.
-    Value ref = layered(stack, 0, test::to_double(wi), test::to_double(wo), 1.0, 0.0);
+    const dvec3 l = test::to_double(wi), v = test::to_double(wo);
+    Value ref = layered(stack, 0, l, v, 1.0, 0.0, HalfVector::Exact);
+    Value ref_float_h = layered(stack, 0, l, v, 1.0, 0.0, HalfVector::FloatRounded);
     dvec3 spread(0.0);
     for (int k = 0; k < 8; ++k) {
-      Value moved = layered(stack, 0, test::to_double(nudge(wi, rng)), test::to_double(nudge(wo, rng)), 1.0, 0.0);
+      Value moved = layered(stack, 0, test::to_double(nudge(wi, rng)), test::to_double(nudge(wo, rng)), 1.0, 0.0,
+                            HalfVector::Exact);
       spread = glm::max(spread, glm::abs(moved.f - ref.f));
     }
     vec3 got = example.evaluator.eval(ShadingContext{}, wi, wo);
     double pair_max = std::max({ref.f.x, ref.f.y, ref.f.z});
-    bool limited = false;
+    bool limited = false, strict = true, strict_float_h = true;
+    double pair_relative = 0.0, pair_relative_float_h = 0.0;
     for (int c = 0; c < 3; ++c) {
       double error = std::abs(double(got[c]) - ref.f[c]);
-      double strict = 1.0e-5 * std::abs(ref.f[c]) + 1.0e-7 * pair_max + 1.0e-20;
+      double floors = 1.0e-7 * pair_max + 1.0e-20;
       double conditioning = ref.float_noise[c] + 2.0 * spread[c];
+      strict = strict && error <= 1.0e-5 * std::abs(ref.f[c]) + floors;
+      double error_float_h = std::abs(double(got[c]) - ref_float_h.f[c]);
+      strict_float_h = strict_float_h && error_float_h <= 1.0e-5 * std::abs(ref_float_h.f[c]) + floors;
       // Relative errors of values that matter (above the floors).
       if (std::abs(ref.f[c]) > std::max(1.0e-7 * pair_max, 1.0e-20)) {
         double relative = error / std::abs(ref.f[c]);
         stats.max_relative_all = std::max(stats.max_relative_all, relative);
+        pair_relative = std::max(pair_relative, relative);
+        pair_relative_float_h = std::max(pair_relative_float_h, error_float_h / std::abs(ref_float_h.f[c]));
         if (conditioning > 1.0e-5 * std::abs(ref.f[c]))
           limited = true;
         else
           stats.max_relative = std::max(stats.max_relative, relative);
+        double relative_float_h = error_float_h / std::abs(ref_float_h.f[c]);
+        if (relative_float_h > stats.max_relative_float_h) {
+          stats.max_relative_float_h = relative_float_h;
+          std::ostringstream s;
+          s.precision(10);
+          s << "wi " << describe(wi) << " wo " << describe(wo) << " channel " << c << ": evaluator " << got[c]
+            << ", transcription at the float half vector " << ref_float_h.f[c];
+          stats.worst_strict_float_h = s.str();
+        }
       }
-      double tolerance = strict + conditioning;
+      double tolerance = 1.0e-5 * std::abs(ref.f[c]) + floors + conditioning;
       if (error / tolerance > stats.max_over_tolerance) {
         stats.max_over_tolerance = error / tolerance;
         std::ostringstream s;
@@ -1006,48 +1211,71 @@ TranscriptionStats compare_with_transcription(const Example& example, const Stac
       }
     }
     if (limited) ++stats.limited;
+    if (strict) ++stats.strict;
+    if (strict_float_h) ++stats.strict_float_h;
+    if (std::min(wi.z, wo.z) >= kSteep) {
+      ++stats.steep;
+      if (strict) ++stats.strict_steep;
+      if (strict_float_h) ++stats.strict_float_h_steep;
+      stats.max_relative_steep = std::max(stats.max_relative_steep, pair_relative);
+      stats.max_relative_float_h_steep = std::max(stats.max_relative_float_h_steep, pair_relative_float_h);
+    }
   }
   return stats;
 }
 
 }  // namespace
 
-TEST_CASE("two-layer examples match an independent transcription of Elek's Algorithm 1") {
-  const std::vector<std::string> names = {
-      "acrylic_lacquer", "red_lacquer",  "ceramic_glaze", "frosted_acrylic_paint", "sugar",
-      "latex",           "brass",        "car_paint",     "gold_metallic_paint",   "gold_paint",
-      "blue_metallic",   "silver_paint", "concrete_ball", "christmas_orb"};
+TEST_CASE("every stack without mixes matches an independent transcription of Elek's Algorithm 1") {
+  // Every example and test material that is a plain stack: the 2-layer examples, house paint's
+  // two coats, the three distinct interfaces of three_interfaces, and every distribution and
+  // Fresnel term.
   const int pairs = 10000 / test::kSanitizerDivisor;
-  std::string summary = "Elek transcription vs evaluator (" + std::to_string(pairs) +
-                        " pairs): max relative error where float conditioning allows 1e-5 | max relative error "
-                        "overall | max error / tolerance | pairs where conditioning allows more than 1e-5\n";
-  for (const std::string& name : names) {
-    CAPTURE(name);
-    auto it = std::find_if(examples().begin(), examples().end(), [&](const Example& e) { return e.name == name; });
-    REQUIRE(it != examples().end());
-    Stack stack = read_stack(it->file);
-    REQUIRE(stack.coats.size() == 1);
-    TranscriptionStats stats = compare_with_transcription(*it, stack, pairs);
+  std::string summary =
+      "Elek transcription vs evaluator (" + std::to_string(pairs) +
+      " pairs each): pairs within the strict 1e-5 against the exact transcription | worst strict relative error | "
+      "the same against the transcription at the float-rounded half vector | max relative error where float "
+      "conditioning allows 1e-5 | max error / (1e-5 + conditioning) | pairs where conditioning allows more than 1e-5\n";
+  int compared = 0, layers_three = 0;
+  long strict_total = 0, strict_float_h_total = 0, pairs_total = 0;
+  for (const Example& example : examples()) {
+    std::optional<Stack> stack = read_stack(example.file);
+    if (!stack) continue;
+    CAPTURE(example.name);
+    ++compared;
+    if (stack->coats.size() >= 3) ++layers_three;
+    TranscriptionStats stats = compare_with_transcription(example, *stack, pairs);
     CHECK_MESSAGE(stats.max_over_tolerance <= 1.0, stats.worst);
-    char line[200];
-    std::snprintf(line, sizeof line, "  %-22s %.3g | %.3g | %.3g | %ld\n", name.c_str(), stats.max_relative,
-                  stats.max_relative_all, stats.max_over_tolerance, stats.limited);
+    // Where the distribution's sensitivity and the spread under one-ulp moves allow 1e-5, it holds.
+    CHECK(stats.max_relative <= 1.0e-5);
+    // Away from grazing, given the half vector the evaluator computes, what remains is the error of
+    // evaluating in float: D's exponent tan^2 / m^2 reaches 80 inside a lobe, where a few roundings
+    // of it (2.4e-7) move D by up to 2e-5.
+    CHECK(stats.max_relative_float_h_steep <= 4.0e-5);
+    strict_total += stats.strict;
+    strict_float_h_total += stats.strict_float_h;
+    pairs_total += stats.pairs;
+    char line[300];
+    std::snprintf(line, sizeof line, "  %-22s %zu coat(s): %5ld/%ld | %.3g | %5ld | %.3g | %.3g | %.3g | %ld\n",
+                  example.name.c_str(), stack->coats.size(), stats.strict, stats.pairs, stats.max_relative_all,
+                  stats.strict_float_h, stats.max_relative_float_h, stats.max_relative, stats.max_over_tolerance,
+                  stats.limited);
+    summary += line;
+    std::snprintf(line, sizeof line,
+                  "    steep pairs (cosines >= %.2f): %ld/%ld strict, worst %.3g | %ld at the float half vector, worst "
+                  "%.3g\n",
+                  double(kSteep), stats.strict_steep, stats.steep, stats.max_relative_steep, stats.strict_float_h_steep,
+                  stats.max_relative_float_h_steep);
     summary += line;
   }
+  CHECK(compared >= 20);
+  CHECK(layers_three >= 1);
+  char total[200];
+  std::snprintf(total, sizeof total, "  all: %ld of %ld pairs strict (%.1f%%); at the float half vector %ld (%.1f%%)\n",
+                strict_total, pairs_total, 100.0 * double(strict_total) / double(pairs_total), strict_float_h_total,
+                100.0 * double(strict_float_h_total) / double(pairs_total));
+  summary += total;
   MESSAGE(summary);
-}
-
-TEST_CASE("house paint matches the transcription of Elek's Algorithm 1 applied recursively") {
-  auto it =
-      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "house_paint"; });
-  REQUIRE(it != examples().end());
-  Stack stack = read_stack(it->file);
-  REQUIRE(stack.coats.size() == 2);
-  TranscriptionStats stats = compare_with_transcription(*it, stack, 10000 / test::kSanitizerDivisor);
-  CHECK_MESSAGE(stats.max_over_tolerance <= 1.0, stats.worst);
-  MESSAGE("house_paint: max relative error where float conditioning allows 1e-5 "
-          << stats.max_relative << ", overall " << stats.max_relative_all << ", max error / tolerance "
-          << stats.max_over_tolerance << ", float-limited pairs " << stats.limited);
 }
 
 // --- 9: the mix ----------------------------------------------------------------------------------
@@ -1087,4 +1315,33 @@ TEST_CASE("checker tiles evaluate as the red stack on red squares and as the gol
   }
   CHECK(compared > 0);
   CHECK_MESSAGE(differs == 0, first);
+}
+
+TEST_CASE("house paint's middle interface is inert under the relative index: it evaluates as its top coat alone") {
+  // Both of its coats have index 1.3, so the middle one has eta = 1: F = 0, T = 1, t = 1 (README,
+  // "Energy"; the example's notes). Only float rounding of the refraction through it remains.
+  auto it =
+      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "house_paint"; });
+  REQUIRE(it != examples().end());
+  cpu::Evaluator top_only = test::evaluator_from_text(R"({"format": 1, "materials": [{"name": "top", "surface": "@top",
+    "nodes": [
+      {"id": "top", "type": "layer", "interface": "@top_iface", "base": "@paint"},
+      {"id": "top_iface", "type": "interface/dielectric", "ior": 1.3, "roughness_deg": 30.0},
+      {"id": "paint", "type": "substrate/oren_nayar", "albedo": [0.5, 0.9, 1.0], "sigma": 0.34}]}]})");
+  std::mt19937_64 rng(0x5eed000a);
+  double worst = 0.0;
+  for (int i = 0; i < 20000 / test::kSanitizerDivisor; ++i) {
+    vec3 wo = test::to_float(upper_direction(rng, nullptr, 0.0, 0.0, 0.0));
+    dvec3 wo_d = test::to_double(wo);
+    vec3 wi = test::to_float(upper_direction(rng, &wo_d, 0.3, 1.0e-3, 0.5));
+    vec3 a = it->evaluator.eval(ShadingContext{}, wi, wo), b = top_only.eval(ShadingContext{}, wi, wo);
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(double(a[c]) - double(b[c])) / std::max(double(b[c]), 1.0e-12));
+  }
+  CHECK(worst <= 1.0e-5);
+  MESSAGE("house_paint vs its top coat alone: largest relative difference " << worst);
+  // Its lobe selection, too, gives the middle interface only the floor share (F = 0).
+  std::vector<float> w = it->evaluator.lobe_weights(ShadingContext{}, glm::normalize(vec3(0.3f, 0.0f, 1.0f)));
+  REQUIRE(w.size() == 3);
+  CHECK(w[1] < 0.01f);
 }

@@ -32,7 +32,10 @@ void main() {
   // common
   f += lamina_sqr(c) + lamina_luminance(w) + lamina_safe_sqrt(c) + LAMINA_PI + LAMINA_INV_PI;
   // fresnel
-  f += fresnel_dielectric(c, 1.5f) + fresnel_schlick(c, 0.04f);
+  f += fresnel_dielectric(c, 1.5f) + fresnel_schlick(c, 0.04f) + lamina_rarer_side_cosine(c, 0.7f);
+  f += lamina_fresnel_dielectric(1, c, 0.7f);
+  s += fresnel_schlick_rgb(c, vec3(0.04f)) + conductor_f0(vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
+  s += lamina_fresnel_conductor(2, c, vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
   s += fresnel_conductor(c, vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
   s += fresnel_lazanyi(c, vec3(0.1f, 0.42f, 1.56f), vec3(3.8f, 2.5f, 1.9f));
   // microfacet
@@ -59,9 +62,9 @@ void main() {
   bool inside = false;
   ivec4 texels = ivec4(0);
   f += lamina_slope(c, true) + lamina_effective_slope(m, 0.1f, true) + lamina_symmetric_dot(w, v, w);
-  s += lamina_interface_eval(w, v, 1.5f, 0, m, vec3(0.1f), 0.5f, lb, vb, carry) + lb + vb + carry;
-  s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
-  s += lamina_selection_step(v, 1.5f, vec3(0.1f), 0.5f, f);
+  s += lamina_interface_eval(w, v, 1.5f, 0, 1, m, vec3(0.1f), 0.5f, lb, vb, carry) + lb + vb + carry;
+  s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), 2, 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
+  s += lamina_selection_step(v, 1.5f, 0, vec3(0.1f), 0.5f, f);
   f += lamina_reflection_density(0, m, v, w) + lamina_folded_reflection_density(1, m, v, w);
   s += lamina_with_cosine(w, c);
   f += lamina_cos_critical(1.5f) + lamina_microfacet_lobe_pdf(0, m, v, w, 1.0f, w, 1.5f);

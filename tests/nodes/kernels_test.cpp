@@ -168,6 +168,72 @@ TEST_CASE("kernels: fresnel_schlick and fresnel_lazanyi follow their approximati
   CHECK(double(k::fresnel_lazanyi(1.0f, gold_n, gold_k).x) == rel(15.25 / 15.65));
 }
 
+TEST_CASE("kernels: conductor_f0 is the exact conductor reflectance at normal incidence") {
+  // Born and Wolf sec. 14.2 at cos 1: ((n-1)^2 + k^2) / ((n+1)^2 + k^2); gold's red channel is
+  // (0.81 + 14.44) / (1.21 + 14.44) = 15.25 / 15.65, and k = 0 gives ((n-1)/(n+1))^2 = 0.04 for n = 1.5.
+  const vec3 gold_n(0.1f, 0.42f, 1.56f), gold_k(3.8f, 2.5f, 1.9f);
+  // python3 -c "print([((n-1)**2+k*k)/((n+1)**2+k*k) for n,k in zip((0.1,0.42,1.56),(3.8,2.5,1.9))])"
+  CHECK_VEC3(k::conductor_f0(gold_n, gold_k), 0.9744408945686901, 0.7967676376657311, 0.3860443150064937);
+  CHECK(double(k::conductor_f0(vec3(1.5f), vec3(0.0f)).x) == rel(0.04));
+  CHECK_VEC3_NEAR(k::conductor_f0(gold_n, gold_k), k::fresnel_conductor(1.0f, gold_n, gold_k), 1e-6f);
+  CHECK_VEC3_NEAR(k::fresnel_schlick_rgb(0.3f, vec3(0.04f, 0.5f, 1.0f)),
+                  vec3(k::fresnel_schlick(0.3f, 0.04f), k::fresnel_schlick(0.3f, 0.5f), 1.0f), 0.0f);
+}
+
+TEST_CASE("kernels: the fresnel modes select the exact term, Schlick and Lazanyi-Szirmay-Kalos") {
+  const vec3 gold_n(0.1f, 0.42f, 1.56f), gold_k(3.8f, 2.5f, 1.9f);
+  Uniform u(31);
+  for (int i = 0; i < 200; ++i) {
+    float c = u.next();
+    float eta = 0.5f + 2.0f * u.next();
+    // Mode 0 (and unknown modes) is the exact term, bit for bit.
+    CHECK(k::lamina_fresnel_dielectric(0, c, eta) == k::fresnel_dielectric(c, eta));
+    CHECK(k::lamina_fresnel_dielectric(7, c, eta) == k::fresnel_dielectric(c, eta));
+    CHECK(k::lamina_fresnel_conductor(0, c, gold_n, gold_k) == k::fresnel_conductor(c, gold_n, gold_k));
+    // For k = 0, Lazanyi-Szirmay-Kalos is Schlick's polynomial: (eta + 1)^2 - (eta - 1)^2 = 4 eta.
+    CHECK(std::abs(k::lamina_fresnel_dielectric(2, c, eta) - k::lamina_fresnel_dielectric(1, c, eta)) <= 3e-7f);
+    // For metals, too, it is Schlick from the exact F0; the modes differ only in rounding.
+    CHECK_VEC3_NEAR(k::lamina_fresnel_conductor(1, c, gold_n, gold_k),
+                    k::lamina_fresnel_conductor(2, c, gold_n, gold_k), 3e-7f);
+    CHECK(k::lamina_fresnel_conductor(2, c, gold_n, gold_k) == k::fresnel_lazanyi(c, gold_n, gold_k));
+  }
+  // Schlick at eta 1.5 (F0 0.04), cos 0.3: 0.04 + 0.96 * 0.7**5 = 0.2013472.
+  CHECK(double(k::lamina_fresnel_dielectric(1, 0.3f, 1.5f)) == rel(0.2013472));
+  // Metals: Elek App. B at cos 0.5 (the values of the fresnel_lazanyi test) for both modes.
+  CHECK_VEC3(k::lamina_fresnel_conductor(1, 0.5f, gold_n, gold_k), 0.9752396166134185, 0.803118648988677,
+             0.4052304301625408);
+  // From the denser side (eta = 1/1.5) at 30 deg the polynomial takes the refracted cosine,
+  // cos_t = sqrt(1 - (1.5 sin 30)^2) = 0.6614378: 0.04 + 0.96 (1 - cos_t)^5 = 0.044270349
+  // python3 -c "import math; c=math.sqrt(1-(1.5*0.5)**2); print(c, 0.04+0.96*(1-c)**5)"
+  const float cos30 = float(std::cos(kPi / 6.0));
+  CHECK(double(k::lamina_rarer_side_cosine(cos30, 1.0f / 1.5f)) == rel(0.6614378277661477));
+  CHECK(double(k::lamina_fresnel_dielectric(1, cos30, 1.0f / 1.5f)) == rel(0.04427034925264154));
+  CHECK(double(k::lamina_fresnel_dielectric(2, cos30, 1.0f / 1.5f)) == rel(0.04427034925264154));
+  // ... which is what the rarer side sees at the angle Snell's law connects (de Greve 2006).
+  CHECK(k::lamina_fresnel_dielectric(1, 0.6614378f, 1.5f) == doctest::Approx(0.04427034925264154).epsilon(1e-5));
+  // Past the critical angle (45 deg: 1.5 sin 45 > 1) total internal reflection gives 1, as the exact term.
+  const float cos45 = float(std::cos(kPi / 4.0));
+  CHECK(k::lamina_rarer_side_cosine(cos45, 1.0f / 1.5f) == -1.0f);
+  for (int mode : {0, 1, 2}) {
+    CAPTURE(mode);
+    CHECK(k::lamina_fresnel_dielectric(mode, cos45, 1.0f / 1.5f) == 1.0f);
+    // An index-matched boundary reflects nothing; eta <= 0 cannot transmit.
+    CHECK(k::lamina_fresnel_dielectric(mode, 0.2f, 1.0f) == 0.0f);
+    CHECK(k::lamina_fresnel_dielectric(mode, 0.2f, 0.0f) == 1.0f);
+    // Grazing incidence from the rarer side reflects everything, normal incidence F0.
+    CHECK(k::lamina_fresnel_dielectric(mode, 0.0f, 1.5f) == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(double(k::lamina_fresnel_dielectric(mode, 1.0f, 1.5f)) == rel(0.04));
+  }
+  // Schlick's error for glass stays below 0.036 (python3: max over cos of |schlick - exact| for
+  // n = 1.5 is 0.0357), and for gold below 0.032 per channel.
+  for (int i = 0; i <= 1000; ++i) {
+    float c = float(i) / 1000.0f;
+    CHECK(std::abs(k::lamina_fresnel_dielectric(1, c, 1.5f) - k::fresnel_dielectric(c, 1.5f)) <= 0.036f);
+    vec3 d = glm::abs(k::lamina_fresnel_conductor(1, c, gold_n, gold_k) - k::fresnel_conductor(c, gold_n, gold_k));
+    CHECK(std::max(d.x, std::max(d.y, d.z)) <= 0.032f);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // microfacet.glsl
 
@@ -485,6 +551,8 @@ TEST_CASE("kernels: absorption is Bouguer-Lambert-Beer along both refracted path
   }
   // Never a gain.
   CHECK(k::absorption(vec3(-1.0f), 1.0f, 0.5f, 0.5f) == vec3(1.0f));
+  // A layer without thickness transmits exactly everything, even along grazing paths.
+  CHECK(k::absorption(vec3(5.0f), 0.0f, 1.0e-30f, 0.3f) == vec3(1.0f));
 }
 
 TEST_CASE("kernels: tir_compensation is Elek's eq. 4 and mirror_across_horizon flips z") {
@@ -689,16 +757,41 @@ TEST_CASE("kernels: the interface step carries T a t and returns the interface's
   const vec3 l = direction(30, 0), v = direction(45, 180);
   vec3 lb, vb, carry;
   const float m = 0.2f, eta = 1.5f;
-  const vec3 f = k::lamina_interface_eval(l, v, eta, 0, m, vec3(0.1f, 0.2f, 0.3f), 2.0f, lb, vb, carry);
-  const vec3 h = glm::normalize(l + v);
-  const float vh = 0.5f * (glm::dot(v, h) + glm::dot(l, h));
-  const float fr = k::fresnel_dielectric(vh, eta);
-  const float g = k::g_microfacet(0, l.z, v.z, h.z, vh, m);
-  const vec3 want = k::torrance_sparrow(vec3(fr), k::d_microfacet_h(0, h, m), g, l.z, v.z);
-  CHECK_VEC3(f, double(want.x), double(want.y), double(want.z));
-  CHECK_VEC3_NEAR(lb, k::refract_down(l, eta), 0.0f);
-  const vec3 a = k::absorption(vec3(0.1f, 0.2f, 0.3f), 2.0f, lb.z, vb.z);
-  CHECK_VEC3_NEAR(carry, (1.0f - fr) * a * ((1.0f - g) + (1.0f - fr) * g), 1e-7f);
+  for (int mode : {0, 1, 2}) {
+    CAPTURE(mode);
+    const vec3 f = k::lamina_interface_eval(l, v, eta, 0, mode, m, vec3(0.1f, 0.2f, 0.3f), 2.0f, lb, vb, carry);
+    const vec3 h = glm::normalize(l + v);
+    const float vh = 0.5f * (glm::dot(v, h) + glm::dot(l, h));
+    // The Fresnel term the mode selects: exact, Schlick with F0 = 0.04, or Lazanyi with k = 0.
+    const float fr = mode == 0   ? k::fresnel_dielectric(vh, eta)
+                     : mode == 1 ? k::fresnel_schlick(vh, 0.04f)
+                                 : k::fresnel_lazanyi(vh, vec3(eta), vec3(0.0f)).x;
+    const float g = k::g_microfacet(0, l.z, v.z, h.z, vh, m);
+    const vec3 want = k::torrance_sparrow(vec3(fr), k::d_microfacet_h(0, h, m), g, l.z, v.z);
+    CHECK_VEC3(f, double(want.x), double(want.y), double(want.z));
+    CHECK_VEC3_NEAR(lb, k::refract_down(l, eta), 0.0f);
+    const vec3 a = k::absorption(vec3(0.1f, 0.2f, 0.3f), 2.0f, lb.z, vb.z);
+    CHECK_VEC3_NEAR(carry, (1.0f - fr) * a * ((1.0f - g) + (1.0f - fr) * g), 1e-7f);
+    // The lobe selection's (1 - F)^2 at wo uses the same mode.
+    float factor = 0.0f;
+    const vec3 below = k::lamina_selection_step(v, eta, mode, vec3(0.0f), 0.0f, factor);
+    const float fv = k::lamina_fresnel_dielectric(mode, v.z, eta);
+    CHECK(below == k::refract_down(v, eta));
+    CHECK(double(factor) == rel(double(1.0f - fv) * double(1.0f - fv)));
+  }
+  // The conductor lobe: Torrance-Sparrow with the mode's conductor Fresnel term.
+  const vec3 n(0.3f, 0.5f, 1.2f), kk(3.2f, 2.6f, 2.2f);
+  for (int mode : {0, 1, 2}) {
+    CAPTURE(mode);
+    const vec3 h = glm::normalize(l + v);
+    const float vh = 0.5f * (glm::dot(v, h) + glm::dot(l, h));
+    const vec3 fr = mode == 0   ? k::fresnel_conductor(vh, n, kk)
+                    : mode == 1 ? k::fresnel_schlick_rgb(vh, k::conductor_f0(n, kk))
+                                : k::fresnel_lazanyi(vh, n, kk);
+    const vec3 want =
+        k::torrance_sparrow(fr, k::d_microfacet_h(2, h, m), k::g_microfacet(2, l.z, v.z, h.z, vh, m), l.z, v.z);
+    CHECK_VEC3_NEAR(k::lamina_conductor_eval(l, v, n, kk, 2, mode, m), want, 0.0f);
+  }
 }
 
 TEST_CASE("kernels: lobe sampling stays in the upper hemisphere and its densities are positive there") {
