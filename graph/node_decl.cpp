@@ -54,6 +54,15 @@ ParamDecl& ParamDecl::one_of(std::vector<std::string> options) {
   choices = std::move(options);
   return *this;
 }
+ParamDecl& ParamDecl::one_of_described(std::vector<std::pair<std::string, std::string>> options) {
+  choices.clear();
+  choice_docs.clear();
+  for (auto& [value, line] : options) {
+    choices.push_back(std::move(value));
+    choice_docs.push_back(std::move(line));
+  }
+  return *this;
+}
 ParamDecl& ParamDecl::links() {
   linkable = true;
   return *this;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "graph/value.h"
@@ -25,10 +26,11 @@ struct ParamDecl {
   std::string unit;  // "" for unitless; stated in the doc tables
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;              // lo < value instead of lo <= value
-  std::optional<Value> fallback;     // the default; none: required unless part of an Alternatives
-  std::vector<std::string> choices;  // for ValueType::Enum
-  bool linkable = false;             // may be "@node.output" instead of a constant
+  bool lo_open = false;                  // lo < value instead of lo <= value
+  std::optional<Value> fallback;         // the default; none: required unless part of an Alternatives
+  std::vector<std::string> choices;      // for ValueType::Enum
+  std::vector<std::string> choice_docs;  // empty, or one line per choice for the references
+  bool linkable = false;                 // may be "@node.output" instead of a constant
   std::string doc;
 
   // Builders, so that a declaration reads as one expression.
@@ -38,6 +40,8 @@ struct ParamDecl {
   ParamDecl& in_unit(std::string u);
   ParamDecl& or_default(Value v);
   ParamDecl& one_of(std::vector<std::string> options);
+  // The choices with a line each (what the value means, its constants, their source).
+  ParamDecl& one_of_described(std::vector<std::pair<std::string, std::string>> options);
   ParamDecl& links();
   ParamDecl& described(std::string text);
 

@@ -214,6 +214,7 @@ std::string node_reference_text(const NodeDecl& d) {
     if (p.has_range()) out += ", " + range_cell(p);
     out += ", " + (p.fallback ? "default " + default_text(p) : default_cell(d, p)) + "\n";
     out += "      " + p.doc + "\n";
+    for (size_t i = 0; i < p.choice_docs.size(); ++i) out += "        " + p.choices[i] + ": " + p.choice_docs[i] + "\n";
   }
   for (const auto& alt : d.alternatives)
     out += std::string("  ") + (alt.optional ? "at most one of: " : "exactly one of: ") + alternatives_text(alt, "") +
@@ -237,6 +238,12 @@ std::string node_reference_markdown(const NodeRegistry& registry) {
         out += "| `" + p.name + "` | " + type_text(p) + " | " + p.unit + " | " + range_cell(p) + " | " +
                default_cell(d, p) + " | " + p.doc + " |\n";
       out += "\n";
+      for (const auto& p : d.params) {
+        if (p.choice_docs.empty()) continue;
+        out += "Values of `" + p.name + "`:\n\n";
+        for (size_t i = 0; i < p.choice_docs.size(); ++i) out += "- `" + p.choices[i] + "`: " + p.choice_docs[i] + "\n";
+        out += "\n";
+      }
     }
     for (const auto& alt : d.alternatives)
       out += std::string(alt.optional ? "Give at most one of " : "Give exactly one of ") + alternatives_text(alt, "`") +

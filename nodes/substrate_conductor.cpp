@@ -1,14 +1,18 @@
 // substrate/conductor: a rough metal, Torrance-Sparrow with the conductor Fresnel term (exact by
 // default; course sec. 2.1). Metals are opaque, so a conductor is always the bottom of a stack.
+#include "graph/number_text.h"
 #include "nodes/metals.h"
 #include "nodes/microfacet_params.h"
 
 namespace lamina {
 
-static std::vector<std::string> metal_names() {
-  std::vector<std::string> names;
-  for (const auto& m : metals()) names.emplace_back(m.name);
-  return names;
+// Each named metal with its constants and their source, for `lamina nodes` and schema/nodes.md.
+static std::vector<std::pair<std::string, std::string>> described_metals() {
+  auto triple = [](const Vec3d& v) { return number_text(v[0]) + ", " + number_text(v[1]) + ", " + number_text(v[2]); };
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& m : metals())
+    out.emplace_back(m.name, "n (" + triple(m.n) + "), k (" + triple(m.k) + "); " + std::string(m.source));
+  return out;
 }
 
 NodeDecl declare_substrate_conductor() {
@@ -17,7 +21,7 @@ NodeDecl declare_substrate_conductor() {
   d.kind = NodeKind::Substrate;
   d.doc = "rough metal base: a named metal or its complex index of refraction n + ik per channel";
   d.params.push_back(param("metal", ValueType::Enum)
-                         .one_of(metal_names())
+                         .one_of_described(described_metals())
                          .described("a named metal with tabulated n and k; give this or n and k"));
   d.params.push_back(param("n", ValueType::Color)
                          .above(0.0)

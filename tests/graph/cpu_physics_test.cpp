@@ -252,6 +252,7 @@ const std::map<std::string, double>& documented_excess() {
       {"checker_tiles", 2.041 * 1.03},        // 0 deg, R, on a gold square
       {"christmas_orb", 1.846 * 1.03},        // 0 deg, R
       {"concrete_ball", 1.138 * 1.03},        // 89 deg, B
+      {"fabric", 1.007 * 1.03},               // 89 deg, R
       {"gold_metallic_paint", 1.978 * 1.03},  // 0 deg, R
       {"gold_paint", 1.570 * 1.03},           // 0 deg, R
       {"house_paint", 1.199 * 1.03},          // 89 deg, B

@@ -25,7 +25,7 @@ TEST_CASE("lamina validate accepts every example and exits 0") {
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("17 of 17 files valid") != std::string::npos);
+  CHECK(r.out.find("18 of 18 files valid") != std::string::npos);
 }
 
 TEST_CASE("lamina validate exits 2 on every broken file, prints its pointer and writes nothing") {
@@ -72,7 +72,7 @@ TEST_CASE("lamina classify prints each course example's class") {
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("car_paint                e) metallic paint") != std::string::npos);
   CHECK(r.out.find("house_paint              h) multi-layer") != std::string::npos);
-  CHECK(r.out.find("15 of 15 class tags agree with the structure") != std::string::npos);
+  CHECK(r.out.find("16 of 16 class tags agree with the structure") != std::string::npos);
   CHECK(r.out.find("DISAGREES") == std::string::npos);
 }
 
@@ -83,6 +83,12 @@ TEST_CASE("lamina nodes lists the types and explains one, and an unknown type ex
   auto one = test::run_cli("nodes medium/absorbing");
   CHECK(one.exit_code == 0);
   CHECK(one.out.find("thickness: float or link, micrometres") != std::string::npos);
+  // A named metal's constants and their source, from the same table the checker uses.
+  auto conductor = test::run_cli("nodes substrate/conductor");
+  CHECK(conductor.out.find("        gold: n (0.1, 0.42, 1.56), k (3.8, 2.5, 1.9); Weidlich and Wilkie course") !=
+        std::string::npos);
+  CHECK(conductor.out.find("        chromium: n (3.535, 2.901, 2.145), k (4.348, 4.231, 3.862); Rakic et al.") !=
+        std::string::npos);
   auto unknown = test::run_cli("nodes medium/absorbin");
   CHECK(unknown.exit_code == 2);
   CHECK(unknown.err.find("did you mean 'medium/absorbing'?") != std::string::npos);
@@ -102,9 +108,9 @@ TEST_CASE("lamina validate checks a scene and its material files and prints a on
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("examples/scenes/showcase.json: ok (scene: 18 objects, 17 materials, 2 lights, 1 camera)") !=
+  CHECK(r.out.find("examples/scenes/showcase.json: ok (scene: 19 objects, 18 materials, 2 lights, 1 camera)") !=
         std::string::npos);
-  CHECK(r.out.find("1 of 1 file valid, 17 materials, 0 warnings") != std::string::npos);
+  CHECK(r.out.find("1 of 1 file valid, 18 materials, 0 warnings") != std::string::npos);
 }
 
 TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {

@@ -220,21 +220,22 @@ TEST_CASE("glTF export: the showcase has a node per object, camera, light and la
   REQUIRE(d.ok());
   gltf::Export out = gltf::export_scene(scene, "showcase.glb", quick());
   Json j = glb_json(out.files[0].bytes);
-  // 1 camera, 2 lights, 18 objects (17 spheres and the floor), 17 labels.
-  CHECK(j["nodes"].size() == 38);
-  CHECK(j["scenes"][0]["nodes"].size() == 38);
-  CHECK(j["meshes"].size() == 35);
-  CHECK(j["materials"].size() == 34);  // 17 lamina materials, 17 label materials
-  CHECK(out.materials.size() == 17);   // the fit report: lamina materials only
+  // 1 camera, 2 lights, 19 objects (18 spheres and the floor), 18 labels.
+  CHECK(j["nodes"].size() == 40);
+  CHECK(j["scenes"][0]["nodes"].size() == 40);
+  CHECK(j["meshes"].size() == 37);
+  CHECK(j["materials"].size() == 36);  // 18 lamina materials, 18 label materials
+  CHECK(out.materials.size() == 18);   // the fit report: lamina materials only
   CHECK(j["cameras"].size() == 1);
   CHECK(j["extensions"]["KHR_lights_punctual"]["lights"].size() == 2);
   CHECK(j["nodes"][0]["name"] == "main");
   CHECK(j["nodes"][1]["name"] == "key");
   CHECK(j["nodes"][2]["name"] == "fill");
   CHECK(j["nodes"][3]["name"] == "acrylic_lacquer");
-  CHECK(j["nodes"][20]["name"] == "floor");
-  CHECK(j["nodes"][21]["name"] == "acrylic_lacquer label");
-  CHECK(j["nodes"][37]["name"] == "sugar label");
+  CHECK(j["nodes"][11]["name"] == "fabric");
+  CHECK(j["nodes"][21]["name"] == "floor");
+  CHECK(j["nodes"][22]["name"] == "acrylic_lacquer label");
+  CHECK(j["nodes"][39]["name"] == "sugar label");
   CHECK(out.notes.empty());
 }
 
