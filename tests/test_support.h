@@ -19,6 +19,9 @@ struct RunResult {
 // Runs the lamina CLI with `args` (already shell-quoted where needed) in `working_dir`.
 RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir = {});
 
+// Every file and directory under `dir`, as paths relative to it, sorted.
+std::vector<std::string> listing(const std::filesystem::path& dir);
+
 // A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {
  public:

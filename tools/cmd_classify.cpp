@@ -18,10 +18,7 @@ int run_classify(const ClassifyOptions& o) {
   // With several files, each file's materials follow a line naming it.
   const bool several = o.inputs.size() > 1 || std::filesystem::is_directory(o.inputs.front());
   int code = for_each_checked_file(o.inputs, [&](const std::filesystem::path& file, CheckedFile& checked) {
-    if (!checked.ok()) {
-      for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
-      return false;
-    }
+    if (!checked.ok()) return print_diagnostics(checked.diagnostics);
     if (several) std::cout << file.string() << ":\n";
     for (size_t i = 0; i < checked.document.materials.size(); ++i) {
       const Material& m = checked.document.materials[i];

@@ -77,9 +77,7 @@ int run_gltf(const GltfOptions& o) {
     std::cerr << "lamina: " << e.what() << "\n";
     return kExitIo;
   }
-  for (const auto& d : diagnostics.errors()) std::cerr << format(d) << "\n";
-  for (const auto& d : diagnostics.warnings()) std::cerr << format(d) << "\n";
-  if (!diagnostics.ok()) return kExitInvalid;
+  if (!print_diagnostics(diagnostics)) return kExitInvalid;
 
   gltf::ExportOptions options;
   options.fallback.bake_size = o.bake_size;

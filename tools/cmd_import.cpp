@@ -35,9 +35,7 @@ int run_import(const ImportOptions& o) {
     std::cerr << "lamina: " << e.what() << "\n";
     return kExitIo;
   }
-  for (const auto& d : diagnostics.errors()) std::cerr << format(d) << "\n";
-  for (const auto& d : diagnostics.warnings()) std::cerr << format(d) << "\n";
-  if (!diagnostics.ok()) return kExitInvalid;
+  if (!print_diagnostics(diagnostics)) return kExitInvalid;
 
   // Refuse to replace files unless asked; a texture identical to the one there is no conflict.
   const std::filesystem::path directory = output.parent_path().empty() ? "." : output.parent_path();

@@ -77,8 +77,7 @@ int run_validate(const ValidateOptions& o) {
       for (const auto& w : d.warnings()) entry["diagnostics"].push_back(to_json(w));
       report.push_back(entry);
     } else {
-      for (const auto& e : d.errors()) std::cerr << format(e) << "\n";
-      for (const auto& w : d.warnings()) std::cerr << format(w) << "\n";
+      print_diagnostics(d);
       if (file_ok && !o.quiet) std::cout << file.string() << ": ok (" << checked.summary << ")\n";
     }
     if (file_ok) {

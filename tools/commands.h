@@ -45,6 +45,10 @@ Inputs expand_inputs(const std::vector<std::string>& inputs);
 int for_each_checked_file(const std::vector<std::string>& inputs,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
 
+// Prints errors, then warnings, as "file:pointer: message" lines on stderr; returns whether there
+// was no error.
+bool print_diagnostics(const Diagnostics& diagnostics);
+
 // Writes `text` through a temporary file and a rename, so that a failure never leaves half a
 // file; on failure prints "lamina: cannot write ..." and returns false.
 bool write_file(const std::filesystem::path& path, const std::string& text);

@@ -15,6 +15,12 @@ void raise_code(int& code, int problem) {
 
 }  // namespace
 
+bool print_diagnostics(const Diagnostics& diagnostics) {
+  for (const auto& d : diagnostics.errors()) std::cerr << format(d) << "\n";
+  for (const auto& d : diagnostics.warnings()) std::cerr << format(d) << "\n";
+  return diagnostics.ok();
+}
+
 Inputs expand_inputs(const std::vector<std::string>& inputs) {
   Inputs out;
   for (const auto& input : inputs) {

@@ -24,11 +24,7 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
     std::cerr << "lamina: " << e.what() << "\n";
     return kExitIo;
   }
-  if (!checked.ok()) {
-    for (const auto& d : checked.diagnostics.errors()) std::cerr << format(d) << "\n";
-    for (const auto& d : checked.diagnostics.warnings()) std::cerr << format(d) << "\n";
-    return kExitInvalid;
-  }
+  if (!print_diagnostics(checked.diagnostics)) return kExitInvalid;
   const auto& materials = checked.document.materials;
   std::vector<std::string> names;
   std::string listed;  // "a, b, c"

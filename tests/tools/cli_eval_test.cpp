@@ -30,13 +30,6 @@ cpu::Evaluator library_evaluator(const std::string& relative) {
 
 std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
-std::vector<std::string> listing(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 }  // namespace
 
 TEST_CASE("lamina eval prints the library's f and pdf in plain text and as JSON") {
@@ -157,7 +150,8 @@ TEST_CASE("lamina plot writes the same PNG of the requested size every time and 
   CHECK(image->height == 400);
   REQUIRE(test::run_cli(args + quoted(second)).exit_code == 0);
   CHECK(test::read_file(first) == test::read_file(second));
-  CHECK(listing(dir.path()) == std::vector<std::string>{"again.png", "car_paint.png"});  // no temporary files left
+  CHECK(test::listing(dir.path()) ==
+        std::vector<std::string>{"again.png", "car_paint.png"});  // no temporary files left
 
   test::TempDir empty;
   auto invalid =
@@ -169,7 +163,7 @@ TEST_CASE("lamina plot writes the same PNG of the requested size every time and 
   auto small = test::run_cli("plot " + quoted(test::source_dir() / kCarPaint) + " --size 10 -o " +
                              quoted(empty.path() / "plot.png"));
   CHECK(small.exit_code == 2);
-  CHECK(listing(empty.path()).empty());
+  CHECK(test::listing(empty.path()).empty());
 }
 
 TEST_CASE("lamina eval and albedo and plot explain themselves with --help") {
@@ -254,7 +248,7 @@ TEST_CASE("lamina eval, albedo and plot work on every example material") {
     CHECK(image->width == 800);
     CHECK(image->height == 400);
   }
-  CHECK(listing(dir.path()).size() == plotted);
+  CHECK(test::listing(dir.path()).size() == plotted);
 }
 
 TEST_CASE("lamina plot takes the slices' uv and the sky's radiance, and rejects bad values with exit 2") {
@@ -300,5 +294,5 @@ TEST_CASE("lamina plot takes the slices' uv and the sky's radiance, and rejects 
     CHECK(r.exit_code == 2);
     CHECK(r.out.empty());
   }
-  CHECK(listing(empty.path()).empty());
+  CHECK(test::listing(empty.path()).empty());
 }

@@ -12,13 +12,6 @@ namespace {
 
 std::string data(const std::string& name) { return (test::source_dir() / "tests/data/gltf" / name).string(); }
 
-std::vector<std::string> listing(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 }  // namespace
 
 TEST_CASE("lamina import writes a valid material file with the textures next to it") {
@@ -32,7 +25,7 @@ TEST_CASE("lamina import writes a valid material file with the textures next to 
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
   CHECK(r.out.find("out/imported.json: 2 materials, 1 texture extracted, 0 warnings") != std::string::npos);
-  CHECK(listing(dir.path() / "out") == std::vector<std::string>{"imported.json", "patina_mask.png"});
+  CHECK(test::listing(dir.path() / "out") == std::vector<std::string>{"imported.json", "patina_mask.png"});
   CHECK(test::read_file(dir.path() / "out/patina_mask.png") ==
         test::read_file(test::source_dir() / "examples/textures/patina_mask.png"));
   auto valid = test::run_cli("validate out/imported.json", dir.path());
@@ -70,5 +63,5 @@ TEST_CASE("lamina import exits 2 on a broken glTF and 1 on a missing file, writi
   }
   auto missing = test::run_cli("import no_such.gltf -o out.json", dir.path());
   CHECK(missing.exit_code == 1);
-  CHECK(listing(dir.path()).empty());
+  CHECK(test::listing(dir.path()).empty());
 }

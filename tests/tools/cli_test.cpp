@@ -9,17 +9,6 @@
 
 using namespace lamina;
 
-namespace {
-
-std::vector<std::string> listing(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) names.push_back(e.path().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-}  // namespace
-
 TEST_CASE("lamina validate accepts every example and exits 0") {
   auto r = test::run_cli("validate examples/materials", test::source_dir());
   INFO(r.err);
@@ -32,7 +21,7 @@ TEST_CASE("lamina validate exits 2 on every broken file, prints its pointer and 
   auto manifest = nlohmann::json::parse(test::read_file(test::source_dir() / "tests/data/bad/cases.json"));
   test::TempDir dir;
   std::filesystem::copy(test::source_dir() / "tests/data/bad", dir.path());
-  auto before = listing(dir.path());
+  auto before = test::listing(dir.path());
   for (const auto& c : manifest) {
     std::string file = c.at("file");
     std::string pointer = c.at("pointer");
@@ -48,7 +37,7 @@ TEST_CASE("lamina validate exits 2 on every broken file, prints its pointer and 
       found = found || (line.rfind(prefix, 0) == 0 && line.find(fragment) != std::string::npos);
     CHECK(found);
   }
-  CHECK(listing(dir.path()) == before);
+  CHECK(test::listing(dir.path()) == before);
 }
 
 TEST_CASE("lamina validate reports I/O problems with exit 1 and gives a JSON report on request") {
