@@ -1,7 +1,13 @@
-// lamina glsl FILE [--material NAME] [--target 330|450|es300] [--uniforms] [--shader sphere] -o OUT:
-// the material(s) as one GLSL module (graph/glsl/generator.h), plus with --uniforms a JSON side
-// file describing the uniform blocks.
+// lamina glsl FILE [--material NAME] [--target 330|450|es300] [--uniforms] [--shader sphere]
+//             [--interface FILE] -o OUT
+// The material(s) as one GLSL module (graph/glsl/generator.h), plus a JSON side file describing
+// the uniform blocks and samplers: with --uniforms it is OUT with its extension replaced by
+// .uniforms.json (car.glsl -> car.uniforms.json), or --interface FILE names it.
+#include <cstddef>
+#include <fstream>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "graph/glsl/generator.h"
 #include "tools/commands.h"
@@ -10,6 +16,8 @@
 namespace lamina::cli {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 struct GlslOptions {
   MaterialArg material;
@@ -20,18 +28,70 @@ struct GlslOptions {
   std::string interface_file;
 };
 
-// OUT with its extension replaced: shader.glsl -> shader.uniforms.json.
-std::filesystem::path side_file(const std::string& output) {
-  std::filesystem::path path(output);
-  return path.replace_extension(".uniforms.json");
+// The side file's default place: OUT with its extension replaced, car.glsl -> car.uniforms.json
+// (an OUT without an extension gets one: car -> car.uniforms.json).
+fs::path default_side_file(const std::string& output) { return fs::path(output).replace_extension(".uniforms.json"); }
+
+// Writes every file through a temporary file beside it and then renames them all, so that a
+// failure leaves nothing of this run behind: no temporary file, no partial file, and not one
+// output without the other.
+bool write_together(const std::vector<std::pair<fs::path, std::string>>& files) {
+  std::vector<fs::path> temporaries;
+  auto remove_all = [](const std::vector<fs::path>& paths) {
+    std::error_code ec;
+    for (const fs::path& p : paths) fs::remove(p, ec);
+  };
+  for (const auto& [path, text] : files) {
+    fs::path temporary = path;
+    temporary += ".tmp";
+    temporaries.push_back(temporary);
+    std::ofstream out(temporary, std::ios::binary);
+    if (!(out << text) || !out.flush()) {
+      std::cerr << "lamina: cannot write " << path.string() << "\n";
+      out.close();
+      remove_all(temporaries);
+      return false;
+    }
+  }
+  std::vector<fs::path> written;
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temporaries[i], files[i].first, ec);
+    if (ec) {
+      std::cerr << "lamina: cannot write " << files[i].first.string() << ": " << ec.message() << "\n";
+      remove_all(written);
+      remove_all(std::vector<fs::path>(temporaries.begin() + std::ptrdiff_t(i), temporaries.end()));
+      return false;
+    }
+    written.push_back(files[i].first);
+  }
+  return true;
 }
 
 int run_glsl(const GlslOptions& o) {
   glsl::Options options;
+  // The generator's table of targets is the only list of them: no second one in the parser.
   if (!glsl::parse_target(o.target, options.target)) {
-    std::cerr << "lamina: --target: '" << o.target << "' is not a target (330, 450 or es300)\n";
+    std::cerr << "lamina: glsl: --target: '" << o.target << "' is not a target (330, 450 or es300)\n";
     return kExitInvalid;
   }
+  const bool to_stdout = o.output == "-";
+  fs::path side;
+  if (!o.interface_file.empty())
+    side = o.interface_file;
+  else if (o.uniforms && !to_stdout)
+    side = default_side_file(o.output);
+  if (o.uniforms && side.empty()) {
+    std::cerr << "lamina: glsl: --uniforms with -o - needs --interface FILE for the JSON side file (the module "
+                 "goes to standard output)\n";
+    return kExitInvalid;
+  }
+  if (!side.empty() && !to_stdout && side.lexically_normal() == fs::path(o.output).lexically_normal()) {
+    std::cerr << "lamina: glsl: --interface names the GLSL output " << o.output
+              << "; give the side file its own name\n";
+    return kExitInvalid;
+  }
+
   options.uniforms = o.uniforms;
   options.sphere_shader = o.shader == "sphere";
   std::vector<Program> programs;
@@ -43,17 +103,12 @@ int run_glsl(const GlslOptions& o) {
     std::cerr << "lamina: " << o.material.file << ": " << e.what() << "\n";
     return kExitInvalid;
   }
-  if (o.output == "-") {
-    std::cout << module.source;
-  } else if (!write_file(o.output, module.source)) {
-    return kExitIo;
-  }
-  if (o.uniforms || !o.interface_file.empty()) {
-    std::filesystem::path side =
-        o.interface_file.empty() ? side_file(o.output) : std::filesystem::path(o.interface_file);
-    if (o.output == "-" && o.interface_file.empty()) return kExitOk;  // nowhere to put it: stdout holds the module
-    if (!write_file(side, glsl::interface_json(module, options))) return kExitIo;
-  }
+
+  std::vector<std::pair<fs::path, std::string>> files;
+  if (!to_stdout) files.emplace_back(o.output, module.source);
+  if (!side.empty()) files.emplace_back(side, glsl::interface_json(module, options));
+  if (!write_together(files)) return kExitIo;
+  if (to_stdout) std::cout << module.source;
   return kExitOk;
 }
 
@@ -65,20 +120,20 @@ void add_glsl(CLI::App& app, Runner& runner) {
   cmd->add_option("file", o->material.file, "a material file")->required();
   cmd->add_option("-m,--material", o->material.material, "only this material (default: every material in the file)");
   cmd->add_option("-t,--target", o->target, "GLSL flavour: 330 (3.30 core), 450 (4.50 core), es300 (ES 3.00, WebGL2)")
-      ->check(CLI::IsMember({"330", "450", "es300"}))
       ->capture_default_str();
   cmd->add_flag("--uniforms", o->uniforms,
                 "keep constant parameters in a std140 uniform block per material for live editing, and write the "
-                "block layout to OUT's .uniforms.json side file");
+                "block layout to a JSON side file: OUT with its extension replaced by .uniforms.json (car.glsl -> "
+                "car.uniforms.json), or --interface FILE");
   cmd->add_option("--shader", o->shader, "append a ready-to-use fragment shader: sphere (an analytic lit sphere)")
       ->check(CLI::IsMember({"sphere"}));
   cmd->add_option("-o,--output", o->output, "the GLSL file to write, - for standard output")->required();
   cmd->add_option("--interface", o->interface_file,
-                  "where to write the JSON side file (uniform blocks and samplers); default OUT.uniforms.json with "
-                  "--uniforms");
+                  "write the JSON side file (uniform blocks and samplers) here, with or without --uniforms; needed "
+                  "for --uniforms with -o -");
   cmd->footer(
-      "Nothing is written when the file is invalid. With several materials and --shader sphere, the sphere shows "
-      "the first one.");
+      "Nothing is written when the file is invalid, and the module and its side file are written together or not "
+      "at all. With several materials and --shader sphere, the sphere shows the first one.");
   cmd->callback([o, &runner] { runner = [o] { return run_glsl(*o); }; });
 }
 

@@ -1,5 +1,6 @@
 #include "graph/glsl/generator.h"
 
+#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
@@ -7,7 +8,7 @@
 
 #include "graph/cpu/image.h"
 #include "graph/glsl/glsl_text.h"
-#include "graph/glsl/kernel_sources.h"
+#include "graph/glsl/kernel_items.h"
 #include "graph/glsl/sphere_shader.h"
 #include "graph/lobes.h"
 #include "nodes/kernels/kernels.h"
@@ -34,6 +35,10 @@ const TargetInfo& info(Target target) {
 }
 
 const char* version_line(Target target) { return info(target).version; }
+
+// The material file's name without its directories, so that the output does not depend on how
+// the file was named on the command line.
+std::string source_name(const Program& p) { return std::filesystem::path(p.source_file).filename().string(); }
 
 }  // namespace
 
@@ -82,7 +87,7 @@ class MaterialEmitter {
     std::string resolve = emit_resolve();  // first: it collects the uniforms and samplers
     std::ostringstream s;
     s << "// ================================================================================\n";
-    s << "// material \"" << p_.name << "\" from " << p_.source_file << "\n";
+    s << "// material \"" << p_.name << "\" from " << source_name(p_) << "\n";
     s << "// ================================================================================\n\n";
     if (o_.uniforms) emit_block(s);
     for (const SamplerBinding& b : mi_.samplers)
@@ -342,9 +347,9 @@ class MaterialEmitter {
       s << "  float m = lamina_effective_slope(p." << sn << "_m, m_above, " << clamp_flag() << ");\n";
       s << "  vec3 l_below;\n  vec3 v_below;\n  vec3 carry;\n";
       s << call("  vec3 f = lamina_interface_eval",
-                {"l", "v", "p." + sn + "_ior / n_above", std::to_string(int(d.distribution)), "m",
-                 a ? "p." + sn + "_absorption" : "vec3(0.0f)", a ? "p." + sn + "_thickness" : "0.0f", "l_below",
-                 "v_below", "carry"},
+                {"l", "v", "p." + sn + "_ior / n_above", std::to_string(int(d.distribution)),
+                 std::to_string(int(d.fresnel)), "m", a ? "p." + sn + "_absorption" : "vec3(0.0f)",
+                 a ? "p." + sn + "_thickness" : "0.0f", "l_below", "v_below", "carry"},
                 ";");
       s << "  if (l_below.z <= 0.0f || v_below.z <= 0.0f) {\n    return f;\n  }\n";
       s << "  return f + " << node_fn(layer->base) << "(p, l_below, v_below, p." << sn << "_ior, m) * carry;\n}\n\n";
@@ -368,7 +373,7 @@ class MaterialEmitter {
         << signature;
       s << "  float m = lamina_effective_slope(p." << sn << "_m, m_above, " << clamp_flag() << ");\n";
       s << "  return lamina_conductor_eval(l, v, p." << sn << "_n / n_above, p." << sn << "_k / n_above, "
-        << int(c->distribution) << ", m);\n}\n\n";
+        << int(c->distribution) << ", " << int(c->fresnel) << ", m);\n}\n\n";
     }
   }
 
@@ -451,8 +456,10 @@ class MaterialEmitter {
         bool absorbing = std::holds_alternative<AbsorbingMedium>(layer.medium);
         s << "    if (valid" << J << ") {\n";
         s << call("      vec3 below = lamina_selection_step",
-                  {"v" + J, "p." + sn + "_ior / " + n_above, absorbing ? "p." + sn + "_absorption" : "vec3(0.0f)",
-                   absorbing ? "p." + sn + "_thickness" : "0.0f", "factor"},
+                  {"v" + J, "p." + sn + "_ior / " + n_above,
+                   std::to_string(int(std::get<DielectricInterface>(layer.interface).fresnel)),
+                   absorbing ? "p." + sn + "_absorption" : "vec3(0.0f)", absorbing ? "p." + sn + "_thickness" : "0.0f",
+                   "factor"},
                   ";");
         s << "      if (below.z <= 0.0f) {\n        valid" << J << " = false;\n      } else {\n";
         s << "        throughput *= factor;\n";
@@ -464,11 +471,13 @@ class MaterialEmitter {
       const StackNode& node = p_.stack[size_t(lobe.node)];
       const std::string& sn = stack_names_[size_t(lobe.node)];
       std::string estimate;
-      if (std::holds_alternative<LayerNode>(node))
-        estimate = "fresnel_dielectric(v" + J + ".z, p." + sn + "_ior / " + n_above + ")";
-      else if (std::holds_alternative<ConductorNode>(node))
-        estimate = "lamina_luminance(fresnel_conductor(v" + J + ".z, p." + sn + "_n / " + n_above + ", p." + sn +
-                   "_k / " + n_above + "))";
+      if (const auto* l = std::get_if<LayerNode>(&node))
+        estimate = "lamina_fresnel_dielectric(" +
+                   std::to_string(int(std::get<DielectricInterface>(l->interface).fresnel)) + ", v" + J + ".z, p." +
+                   sn + "_ior / " + n_above + ")";
+      else if (const auto* c = std::get_if<ConductorNode>(&node))
+        estimate = "lamina_luminance(lamina_fresnel_conductor(" + std::to_string(int(c->fresnel)) + ", v" + J +
+                   ".z, p." + sn + "_n / " + n_above + ", p." + sn + "_k / " + n_above + "))";
       else
         estimate = "lamina_luminance(p." + sn + "_albedo)";
       s << "    float estimate = 0.0f;\n    if (valid" << J << ") {\n      estimate = " << estimate
@@ -591,7 +600,7 @@ std::string header(std::span<const Program> programs, const Module& module, cons
   s << "// Generated by lamina " << o.lamina_version << " (lamina glsl): target " << version_line(o.target) + 9
     << ", parameters " << (o.uniforms ? "in uniform blocks" : "inlined as constants") << ".\n";
   for (size_t i = 0; i < programs.size(); ++i)
-    s << "// material \"" << programs[i].name << "\" from " << programs[i].source_file << "\n";
+    s << "// material \"" << programs[i].name << "\" from " << source_name(programs[i]) << "\n";
   s << "//\n"
        "// Per material NAME, in the local shading frame (z the normal; wi towards the light, wo towards\n"
        "// the viewer, both away from the surface and normalised; f excludes the cosine):\n"
@@ -602,9 +611,11 @@ std::string header(std::span<const Program> programs, const Module& module, cons
   for (const MaterialInterface& m : module.materials) {
     if (!m.block.empty()) {
       s << "//\n// uniform block " << m.block << " (instance " << m.instance << "), std140, " << m.block_size
-        << " bytes:\n";
+        << " bytes:\n//   offset  type   member = value in the file\n";
       for (const UniformField& f : m.uniforms) {
-        s << "//   " << f.offset << "\t" << f.type << " " << f.name << " =";
+        std::string offset = std::to_string(f.offset);
+        s << "//   " << std::string(offset.size() < 6 ? 6 - offset.size() : 0, ' ') << offset << "  " << f.type
+          << std::string(f.type.size() < 5 ? 5 - f.type.size() : 0, ' ') << "  " << f.name << " =";
         for (float x : f.value) s << " " << float_literal(x).substr(0, float_literal(x).size() - 1);
         s << "\n";
       }
@@ -612,8 +623,9 @@ std::string header(std::span<const Program> programs, const Module& module, cons
     for (const SamplerBinding& b : m.samplers)
       s << "//\n// uniform sampler2D " << b.name << ": node \"" << b.node << "\", file " << b.file << " (" << b.width
         << " x " << b.height << ").\n"
-        << "//   Bind it so that texelFetch returns linear RGBA with the file's top row as row 0 (RGBA32F of\n"
-        << "//   the decoded texels, or SRGB8_ALPHA8 for an sRGB file); lamina filters and wraps itself.\n";
+        << "//   Bind it so that texelFetch returns linear RGBA with the file's top row as row 0: RGBA32F of\n"
+        << "//   the texels decoded as lamina decodes them (a GL's own sRGB decoding of SRGB8_ALPHA8 is not\n"
+        << "//   exact enough to match the CPU); lamina filters and wraps itself.\n";
   }
   return s.str();
 }
@@ -655,12 +667,13 @@ Module generate(std::span<const Program> programs, const Options& options) {
   if (options.target == Target::Es300)
     s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n";
   s << "\n";
-  for (const KernelFile& f : kernel_files()) s << "// ---- kernels: nodes/kernels/" << f.name << "\n" << f.text << "\n";
+  std::string code;  // everything after the kernels: what decides which kernels are needed
   bool images = false;
   for (const MaterialInterface& m : module.materials) images = images || !m.samplers.empty();
-  if (images) s << kImageGlue;
-  for (const std::string& body : bodies) s << body;
-  if (options.sphere_shader) s << sphere_shader(module.materials.front().prefix);
+  if (images) code += kImageGlue;
+  for (const std::string& body : bodies) code += body;
+  if (options.sphere_shader) code += sphere_shader(module.materials.front().prefix);
+  s << needed_kernels(kernel_sources(), code) << code;
   module.source = s.str();
   return module;
 }

@@ -1,7 +1,8 @@
 // The GLSL back end: compiled materials to one self-contained GLSL module (DESIGN.md, graph/glsl).
 //
-// A module is the #version line, a prelude, the kernel files of nodes/kernels/ verbatim (the text
-// the CPU evaluator compiles as C++) and, per material NAME:
+// A module is the #version line, a header comment, a prelude, the pieces of nodes/kernels/ that
+// the materials need (the functions they call with the constants and macros those use, each
+// verbatim: the text the CPU evaluator compiles as C++; see kernel_items.h) and, per material NAME:
 //   vec3  lamina_NAME_eval(vec3 wi, vec3 wo, vec2 uv)     the BRDF f, no cosine
 //   float lamina_NAME_pdf(vec3 wi, vec3 wo, vec2 uv)      the density sample() draws wi with
 //   vec3  lamina_NAME_sample(vec3 wo, vec2 u, float u_layer, vec2 uv, out vec3 wi, out float pdf)
@@ -46,10 +47,11 @@ struct UniformField {
 };
 
 // A texture/image node's sampler: the host binds the image so that texelFetch returns linear
-// RGBA, row 0 being the top row of the file (an RGBA32F texture of the decoded texels, or an
-// sRGB8_ALPHA8 texture of the file's bytes when its colour space is srgb).
+// RGBA, row 0 being the top row of the file: an RGBA32F texture of the texels as lamina decodes
+// them (sRGB files with the CPU's own curve). An SRGB8_ALPHA8 texture of the file's bytes is not
+// exact enough to match the CPU: Mesa llvmpipe's decoding is off by up to 2.5%.
 struct SamplerBinding {
-  std::string name;  // "lamina_<material>_<node id>"
+  std::string name;  // "lamina_<material>_image_<node id>"
   std::string node, file;
   int width = 0, height = 0;
 };

@@ -1,5 +1,6 @@
 // The text of nodes/kernels/*.glsl, embedded at build time (cmake/embed_kernels.cmake), in the
-// order kernels.h includes them: the GLSL back end pastes these after its prelude.
+// order kernels.h includes them: the GLSL back end embeds the pieces of them a module needs
+// (kernel_items.h) after its prelude.
 #pragma once
 
 #include <span>

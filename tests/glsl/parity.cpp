@@ -2,16 +2,29 @@
 // real OpenGL implementation (Mesa llvmpipe through headless EGL) over a grid of (wi, wo, uv)
 // with grazing directions, and compares eval, pdf and sample with the CPU evaluator.
 //
-//   lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] FILE...
+//   lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms]
+//                      [--perturb eval_scale|eval_nan|kernel_constant|sample_direction] FILE...
 //
 // Tolerances (issue 4): eval and pdf within 1e-3 relative with an absolute floor of 1e-5, i.e.
 // |gpu - cpu| <= max(1e-3 |cpu|, 1e-5); sampled directions within 1e-4 per component for the same
-// random numbers. Queries whose u_layer lies within 1e-5 of a boundary between two lobes'
-// selection intervals are not compared for sampling (float rounding may pick either lobe; the
-// count is printed). Prints the worst errors per material; exits 1 on any failure.
+// random numbers; the sample's f and pdf within the eval and pdf tolerance of the CPU's eval and
+// pdf at the direction the GPU drew. Every error is printed as a fraction of its tolerance, the
+// number the pass/fail rule uses: a check passes when its worst error is at most 1. A NaN or an
+// infinity on either side is an error of infinity. Queries whose u_layer lies within 1e-5 of a
+// boundary between two lobes' selection intervals are not compared for sampling (float rounding
+// may pick either lobe; the count is printed). Exits 1 on any failure.
+//
+// Image textures are bound as the module's header says: RGBA32F textures of the decoded texels.
+//
+// --perturb KIND turns the program into a test of the comparator: each module is deliberately
+// broken before it runs, and the program exits 0 only when every run fails the check KIND must
+// break (eval_scale: eval times 1.01, breaks eval; eval_nan: eval NaN, breaks eval;
+// kernel_constant: LAMINA_INV_PI in the embedded kernels 0.5% too large, breaks eval;
+// sample_direction: sampled directions tilted by about 1e-3, breaks the sample direction).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -95,27 +108,23 @@ void main() {
 
 std::string harness(const std::string& prefix) { return glsl::replace_all(kHarness, "NAME", prefix); }
 
-// |gpu - cpu| in units of the tolerance max(1e-3 |cpu|, 1e-5): <= 1 passes.
-float scaled_error(float gpu, float cpu) {
-  if (!std::isfinite(gpu)) return INFINITY;
+// |gpu - cpu| / max(1e-3 |cpu|, 1e-5): the error as a fraction of the eval and pdf tolerance.
+// Infinite when either side is not finite.
+float tolerance_fraction(float gpu, float cpu) {
+  if (!std::isfinite(gpu) || !std::isfinite(cpu)) return INFINITY;
   return std::abs(gpu - cpu) / std::max(kRelTol * std::abs(cpu), kAbsFloor);
 }
-// The relative error, with the floor, as reported: |gpu - cpu| / max(|cpu|, 1e-2).
-float reported_error(float gpu, float cpu) {
-  if (!std::isfinite(gpu)) return INFINITY;
-  return std::abs(gpu - cpu) / std::max(std::abs(cpu), kAbsFloor / kRelTol);
-}
 
+// The worst of one check's errors, each a fraction of its tolerance; NaN counts as infinite.
 struct Worst {
-  float scaled = 0.0f, reported = 0.0f;
+  float fraction = 0.0f;
   size_t query = 0;
   int failures = 0;
-  void add(float gpu, float cpu, size_t q, float tol_scale = 1.0f) {
-    float s = scaled_error(gpu, cpu) / tol_scale;
-    if (s > 1.0f) ++failures;
-    if (s > scaled || !std::isfinite(s)) {
-      scaled = s;
-      reported = reported_error(gpu, cpu);
+  void add(float f, size_t q) {
+    if (std::isnan(f)) f = INFINITY;
+    if (!(f <= 1.0f)) ++failures;
+    if (f > fraction) {
+      fraction = f;
       query = q;
     }
   }
@@ -126,14 +135,59 @@ struct Run {
   bool uniforms;
 };
 
-bool run_material(gltest::Runner& runner, const Program& program, const Run& run, const std::vector<Query>& queries,
-                  const cpu::Evaluator& cpu_eval, const std::vector<cpu::EvalPdf>& ref_eval,
-                  const std::vector<cpu::Sample>& ref_sample, const std::vector<bool>& skip_sample) {
+// The checks of one run.
+struct Checks {
+  Worst eval, pdf, direction, sample_f, sample_pdf;
+  int skipped = 0;
+  int failures() const {
+    return eval.failures + pdf.failures + direction.failures + sample_f.failures + sample_pdf.failures;
+  }
+};
+
+enum class Perturbation { None, EvalScale, EvalNan, KernelConstant, SampleDirection };
+
+// A deliberately wrong module; false when the text to change is missing (then the perturbation
+// proves nothing).
+bool perturb(std::string& source, const std::string& prefix, Perturbation kind) {
+  auto change = [&](const std::string& from, const std::string& to) {
+    std::string changed = glsl::replace_all(source, from, to);
+    bool found = changed != source;
+    source = changed;
+    return found;
+  };
+  switch (kind) {
+    case Perturbation::None: return true;
+    case Perturbation::EvalScale:
+      return change("  return " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n",
+                    "  return 1.01f * " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n");
+    case Perturbation::EvalNan:  // a quiet NaN that depends on the query, so that no compiler folds it
+      return change("  return " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n",
+                    "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + prefix + "_eval_p(" + prefix +
+                        "_resolve(uv), wi, wo);\n");
+    case Perturbation::KernelConstant:
+      return change("const float LAMINA_INV_PI = 0.318309886183791f;", "const float LAMINA_INV_PI = 0.32f;");
+    case Perturbation::SampleDirection:
+      return change("  wi = normalize(d);\n", "  wi = normalize(d + vec3(1.0e-3f, 0.0f, 0.0f));\n");
+  }
+  return false;
+}
+
+// Runs one material in one target and mode; nothing when the module did not run at all.
+std::optional<Checks> run_material(gltest::Runner& runner, const Program& program, const Run& run,
+                                   Perturbation perturbation, const std::vector<Query>& queries,
+                                   const cpu::Evaluator& cpu_eval, const std::vector<cpu::EvalPdf>& ref_eval,
+                                   const std::vector<cpu::Sample>& ref_sample, const std::vector<bool>& skip_sample) {
+  const char* target = glsl::target_name(run.target);
+  const char* mode = run.uniforms ? "uniforms" : "inline";
   glsl::Options options;
   options.target = run.target;
   options.uniforms = run.uniforms;
   glsl::Module module = glsl::generate(std::span<const Program>(&program, 1), options);
   const glsl::MaterialInterface& mi = module.materials.front();
+  if (!perturb(module.source, mi.prefix, perturbation)) {
+    std::printf("  FAIL %s %s: the perturbation found nothing to change\n", target, mode);
+    return std::nullopt;
+  }
 
   const int width = 64, height = int((queries.size() + 63) / 64);
   gltest::Pass pass;
@@ -161,49 +215,40 @@ bool run_material(gltest::Runner& runner, const Program& program, const Run& run
   std::vector<std::vector<vec4>> out;
   std::string error;
   if (!runner.run(pass, &out, &error)) {
-    std::printf("  FAIL %s %s: %s\n", glsl::target_name(run.target), run.uniforms ? "uniforms" : "inline",
-                error.c_str());
-    return false;
+    std::printf("  FAIL %s %s: %s\n", target, mode, error.c_str());
+    return std::nullopt;
   }
 
-  Worst eval, pdf, sample_pdf, sample_f;
-  float worst_dir = 0.0f;
-  size_t worst_dir_query = 0;
-  int dir_failures = 0, skipped = 0;
+  Checks checks;
   for (size_t i = 0; i < queries.size(); ++i) {
     const vec4 e = out[0][i], s = out[1][i], sf = out[2][i];
-    for (int c = 0; c < 3; ++c) eval.add(e[c], ref_eval[i].f[c], i);
-    pdf.add(e.w, ref_eval[i].pdf, i);
+    for (int c = 0; c < 3; ++c) checks.eval.add(tolerance_fraction(e[c], ref_eval[i].f[c]), i);
+    checks.pdf.add(tolerance_fraction(e.w, ref_eval[i].pdf), i);
     if (skip_sample[i]) {
-      ++skipped;
+      ++checks.skipped;
       continue;
     }
     const cpu::Sample& r = ref_sample[i];
-    float d = std::max({std::abs(s.x - r.wi.x), std::abs(s.y - r.wi.y), std::abs(s.z - r.wi.z)});
-    if (!(d <= kDirTol)) ++dir_failures;
-    if (!(d <= worst_dir)) {
-      worst_dir = std::isfinite(d) ? d : INFINITY;
-      worst_dir_query = i;
-    }
+    // The CPU gives wi = 0 and pdf = 0 when it draws nothing; the GPU must do the same.
+    const bool gpu_drew = !(s.w == 0.0f);  // NaN counts as drawn, and fails below
+    const vec3 diff = glm::abs(vec3(s) - r.wi);
+    float d = std::isfinite(diff.x + diff.y + diff.z) ? std::max({diff.x, diff.y, diff.z}) : INFINITY;
+    if ((r.pdf > 0.0f) != gpu_drew) d = INFINITY;
+    checks.direction.add(d / kDirTol, i);
     // The sample's f and pdf must be eval and pdf at the direction the GPU drew: compare with the
     // CPU at that direction (the direction itself is checked above, against the CPU's draw).
-    if (r.pdf > 0.0f || s.w > 0.0f) {
+    if (r.pdf > 0.0f || gpu_drew) {
       ShadingContext ctx;
       ctx.uv = queries[i].uv;
-      vec3 wi = vec3(s);
-      cpu::EvalPdf at = s.w > 0.0f ? cpu_eval.eval_pdf(ctx, wi, queries[i].wo) : cpu::EvalPdf{};
-      sample_pdf.add(s.w, at.pdf, i);
-      for (int c = 0; c < 3; ++c) sample_f.add(sf[c], at.f[c], i);
+      cpu::EvalPdf at = s.w > 0.0f ? cpu_eval.eval_pdf(ctx, vec3(s), queries[i].wo) : cpu::EvalPdf{};
+      checks.sample_pdf.add(tolerance_fraction(s.w, at.pdf), i);
+      for (int c = 0; c < 3; ++c) checks.sample_f.add(tolerance_fraction(sf[c], at.f[c]), i);
     }
-    // A sample the CPU could not draw must not be drawn on the GPU either, and vice versa.
-    if ((r.pdf > 0.0f) != (s.w > 0.0f)) ++dir_failures;
   }
-  int failures = eval.failures + pdf.failures + dir_failures + sample_pdf.failures + sample_f.failures;
-  std::printf(
-      "  %-5s %-8s eval %.2e  pdf %.2e  sample dir %.2e  sample f %.2e  sample pdf %.2e  (%d lobe-boundary "
-      "skips)%s\n",
-      glsl::target_name(run.target), run.uniforms ? "uniforms" : "inline", double(eval.reported), double(pdf.reported),
-      double(worst_dir), double(sample_f.reported), double(sample_pdf.reported), skipped, failures ? "  FAIL" : "");
+  std::printf("  %-5s %-8s eval %8.2e  pdf %8.2e  sample dir %8.2e  sample f %8.2e  sample pdf %8.2e  (%d skipped)%s\n",
+              target, mode, double(checks.eval.fraction), double(checks.pdf.fraction),
+              double(checks.direction.fraction), double(checks.sample_f.fraction), double(checks.sample_pdf.fraction),
+              checks.skipped, checks.failures() ? "  FAIL" : "");
   auto describe = [&](const char* what, size_t q) {
     const Query& x = queries[q];
     std::printf(
@@ -211,24 +256,38 @@ bool run_material(gltest::Runner& runner, const Program& program, const Run& run
         what, double(x.wi.x), double(x.wi.y), double(x.wi.z), double(x.wo.x), double(x.wo.y), double(x.wo.z),
         double(x.uv.x), double(x.uv.y), double(x.u.x), double(x.u.y), double(x.u_layer));
   };
-  if (failures) {
-    std::printf("    failures: eval %d, pdf %d, sample direction %d, sample f %d, sample pdf %d\n", eval.failures,
-                pdf.failures, dir_failures, sample_f.failures, sample_pdf.failures);
-    if (eval.failures) describe("eval", eval.query);
-    if (pdf.failures) describe("pdf", pdf.query);
-    if (dir_failures) describe("sample direction", worst_dir_query);
-    if (sample_f.failures) {
-      describe("sample f", sample_f.query);
-      const vec4 g = out[1][sample_f.query], gf = out[2][sample_f.query];
+  if (checks.failures() && perturbation == Perturbation::None) {
+    std::printf("    failures: eval %d, pdf %d, sample direction %d, sample f %d, sample pdf %d\n",
+                checks.eval.failures, checks.pdf.failures, checks.direction.failures, checks.sample_f.failures,
+                checks.sample_pdf.failures);
+    if (checks.eval.failures) describe("eval", checks.eval.query);
+    if (checks.pdf.failures) describe("pdf", checks.pdf.query);
+    if (checks.direction.failures) describe("sample direction", checks.direction.query);
+    if (checks.sample_f.failures) {
+      size_t q = checks.sample_f.query;
+      describe("sample f", q);
+      const vec4 g = out[1][q], gf = out[2][q];
       ShadingContext ctx;
-      ctx.uv = queries[sample_f.query].uv;
-      cpu::EvalPdf at = cpu_eval.eval_pdf(ctx, vec3(g), queries[sample_f.query].wo);
+      ctx.uv = queries[q].uv;
+      cpu::EvalPdf at = cpu_eval.eval_pdf(ctx, vec3(g), queries[q].wo);
       std::printf("    GPU drew wi (%.9g, %.9g, %.9g) with f (%.7g, %.7g, %.7g), CPU f there (%.7g, %.7g, %.7g)\n",
                   double(g.x), double(g.y), double(g.z), double(gf.x), double(gf.y), double(gf.z), double(at.f.x),
                   double(at.f.y), double(at.f.z));
     }
   }
-  return failures == 0;
+  return checks;
+}
+
+// The failures of the check `kind` must break.
+int broken_check_failures(const Checks& c, Perturbation kind) {
+  switch (kind) {
+    case Perturbation::None: return c.failures();
+    case Perturbation::EvalScale:
+    case Perturbation::EvalNan:
+    case Perturbation::KernelConstant: return c.eval.failures;
+    case Perturbation::SampleDirection: return c.direction.failures;
+  }
+  return 0;
 }
 
 }  // namespace
@@ -237,14 +296,28 @@ int main(int argc, char** argv) {
   std::vector<Run> runs;
   std::vector<std::string> files;
   std::string targets = "330,450,es300", modes = "inline,uniforms";
+  Perturbation perturbation = Perturbation::None;
+  bool usage_error = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
-    if (a == "--targets" && i + 1 < argc)
+    bool has_value = i + 1 < argc;
+    if (a == "--targets" && has_value) {
       targets = argv[++i];
-    else if (a == "--modes" && i + 1 < argc)
+    } else if (a == "--modes" && has_value) {
       modes = argv[++i];
-    else
+    } else if (a == "--perturb" && has_value) {
+      std::string kind = argv[++i];
+      perturbation = kind == "eval_scale"         ? Perturbation::EvalScale
+                     : kind == "eval_nan"         ? Perturbation::EvalNan
+                     : kind == "kernel_constant"  ? Perturbation::KernelConstant
+                     : kind == "sample_direction" ? Perturbation::SampleDirection
+                                                  : Perturbation::None;
+      usage_error = usage_error || perturbation == Perturbation::None;
+    } else if (a.rfind("--", 0) == 0) {
+      usage_error = true;
+    } else {
       files.push_back(a);
+    }
   }
   std::stringstream ts(targets);
   for (std::string t; std::getline(ts, t, ',');) {
@@ -254,10 +327,15 @@ int main(int argc, char** argv) {
       return 2;
     }
     std::stringstream ms(modes);
-    for (std::string m; std::getline(ms, m, ',');) runs.push_back({target, m == "uniforms"});
+    for (std::string m; std::getline(ms, m, ',');) {
+      usage_error = usage_error || (m != "inline" && m != "uniforms");
+      runs.push_back({target, m == "uniforms"});
+    }
   }
-  if (files.empty()) {
-    std::fprintf(stderr, "usage: lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] FILE...\n");
+  if (usage_error || files.empty()) {
+    std::fprintf(stderr,
+                 "usage: lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] "
+                 "[--perturb eval_scale|eval_nan|kernel_constant|sample_direction] FILE...\n");
     return 2;
   }
 
@@ -276,8 +354,14 @@ int main(int argc, char** argv) {
 
   const std::vector<Query> queries = make_queries();
   std::printf("%zu queries per material (64 x 64 grid pairs with theta up to 89.5 deg, 1024 random)\n", queries.size());
+  std::printf(
+      "Worst errors as fractions of their tolerance (a check passes at <= 1): eval, pdf and the sample's f and pdf "
+      "|gpu - cpu| / max(1e-3 |cpu|, 1e-5), the sample's at the GPU's direction; sample dir max |gpu - cpu| per "
+      "component / 1e-4. NaN or inf is inf.\n");
+  if (perturbation != Perturbation::None) std::printf("Perturbed modules: every run must FAIL.\n");
+
+  std::vector<Program> programs;
   bool ok = true;
-  int materials = 0;
   for (const std::string& file : files) {
     CheckedFile checked = check_file(file);
     if (!checked.ok()) {
@@ -285,35 +369,45 @@ int main(int argc, char** argv) {
       ok = false;
       continue;
     }
-    for (size_t m = 0; m < checked.graphs.size(); ++m) {
-      Program program = compile(*checked.graphs[m], file);
-      cpu::Evaluator cpu_eval(program);
-      std::vector<cpu::EvalPdf> ref_eval;
-      std::vector<cpu::Sample> ref_sample;
-      std::vector<bool> skip;
-      for (const Query& q : queries) {
-        ShadingContext ctx;
-        ctx.uv = q.uv;
-        ref_eval.push_back(cpu_eval.eval_pdf(ctx, q.wi, q.wo));
-        ref_sample.push_back(cpu_eval.sample(ctx, q.wo, q.u, q.u_layer));
-        std::vector<float> w = cpu_eval.lobe_weights(ctx, q.wo);
-        float cumulative = 0.0f;
-        bool near = false;
-        for (float x : w) {
-          cumulative += x;
-          near = near || std::abs(q.u_layer - cumulative) < kLobeMargin;
-        }
-        skip.push_back(near);
+    for (size_t m = 0; m < checked.graphs.size(); ++m) programs.push_back(compile(*checked.graphs[m], file));
+  }
+
+  int passed = 0, total = 0;
+  for (const Program& program : programs) {
+    cpu::Evaluator cpu_eval(program);
+    std::vector<cpu::EvalPdf> ref_eval;
+    std::vector<cpu::Sample> ref_sample;
+    std::vector<bool> skip;
+    for (const Query& q : queries) {
+      ShadingContext ctx;
+      ctx.uv = q.uv;
+      ref_eval.push_back(cpu_eval.eval_pdf(ctx, q.wi, q.wo));
+      ref_sample.push_back(cpu_eval.sample(ctx, q.wo, q.u, q.u_layer));
+      std::vector<float> w = cpu_eval.lobe_weights(ctx, q.wo);
+      float cumulative = 0.0f;
+      bool near = false;
+      for (float x : w) {
+        cumulative += x;
+        near = near || std::abs(q.u_layer - cumulative) < kLobeMargin;
       }
-      std::printf("%s (%s, %zu lobes): worst relative errors (floor 1e-5), direction max abs\n", program.name.c_str(),
-                  file.c_str(), cpu_eval.lobe_count());
-      ++materials;
-      for (const Run& run : runs) {
-        gltest::Runner& runner = run.target == glsl::Target::Es300 ? *es : *desktop;
-        ok = run_material(runner, program, run, queries, cpu_eval, ref_eval, ref_sample, skip) && ok;
-      }
+      skip.push_back(near);
+    }
+    std::printf("%s (%s, %zu lobes)\n", program.name.c_str(), program.source_file.c_str(), cpu_eval.lobe_count());
+    for (const Run& run : runs) {
+      gltest::Runner& runner = run.target == glsl::Target::Es300 ? *es : *desktop;
+      std::optional<Checks> checks =
+          run_material(runner, program, run, perturbation, queries, cpu_eval, ref_eval, ref_sample, skip);
+      ++total;
+      bool good = checks && (perturbation == Perturbation::None ? checks->failures() == 0
+                                                                : broken_check_failures(*checks, perturbation) > 0);
+      if (perturbation != Perturbation::None && checks)
+        std::printf("    perturbed: %d failing queries in the check it must break%s\n",
+                    broken_check_failures(*checks, perturbation), good ? "" : "  (the comparator missed it)");
+      passed += good ? 1 : 0;
+      ok = ok && good;
     }
   }
-  std::printf("%s: %d materials x %zu runs\n", ok ? "PASS" : "FAIL", materials, runs.size());
+  std::printf("%s: %d of %d runs (%zu materials x %zu runs) %s\n", ok ? "PASS" : "FAIL", passed, total, programs.size(),
+              runs.size(), perturbation == Perturbation::None ? "passed" : "failed as they must");
   return ok ? 0 : 1;
 }

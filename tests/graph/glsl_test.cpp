@@ -15,6 +15,7 @@
 #include "graph/cpu/evaluator.h"
 #include "graph/glsl/generator.h"
 #include "graph/glsl/glsl_text.h"
+#include "graph/glsl/kernel_items.h"
 #include "graph/glsl/kernel_sources.h"
 #include "graph/load.h"
 #include "graph/registry.h"
@@ -150,6 +151,208 @@ TEST_CASE("glsl: the embedded kernels are nodes/kernels/*.glsl verbatim, in kern
   }
 }
 
+namespace {
+
+// The kernel files as they are on disk, split into pieces.
+std::vector<glsl::KernelSource> kernels_on_disk() {
+  std::vector<glsl::KernelSource> sources;
+  static std::vector<std::string> texts;  // the pieces are views into these
+  if (texts.empty())
+    for (const glsl::KernelFile& f : glsl::kernel_files())
+      texts.push_back(test::read_file(test::source_dir() / "nodes/kernels" / f.name));
+  for (size_t i = 0; i < texts.size(); ++i)
+    sources.push_back(glsl::split_kernel(glsl::kernel_files()[i].name, texts[i]));
+  return sources;
+}
+
+}  // namespace
+
+TEST_CASE("glsl: every kernel file splits into named declarations and comments that put it back together exactly") {
+  for (const glsl::KernelSource& source : kernels_on_disk()) {
+    std::string joined;
+    size_t line = 1;
+    for (const glsl::KernelPiece& piece : source.pieces) {
+      CHECK(piece.line == line);
+      line += size_t(std::count(piece.text.begin(), piece.text.end(), '\n'));
+      joined += piece.text;
+      if (piece.kind == glsl::KernelPiece::Kind::Declaration) {
+        CHECK_MESSAGE(piece.defines.size() == 1, source.name << ":" << piece.line);
+        CHECK(piece.text.back() == '\n');
+      }
+    }
+    CHECK(joined == test::read_file(test::source_dir() / "nodes/kernels" / source.name));
+  }
+}
+
+TEST_CASE("glsl: kernel pruning follows code, not comments, and whole names, not prefixes") {
+  const std::string text = R"(// lamina kernels: a test file.
+
+// A heading for what follows: lamina_unused and lamina_helper_more in a comment are no calls.
+
+#ifndef LAMINA_FN
+#define LAMINA_FN
+#endif
+
+const float HALF = 0.5f;
+const float UNUSED_CONSTANT = 2.0f;  // a trailing comment
+
+// Unlike lamina_helper_more, this one calls nothing.
+LAMINA_FN float lamina_helper(float x) { return x * HALF; }
+
+/* A block comment that mentions lamina_unused(x). */
+LAMINA_FN float lamina_helper_more(float x,
+                                   float y) {
+  // lamina_unused(x) would be wrong here.
+  if (x > 1.0e-5f) {
+    return lamina_helper(x) + y;
+  }
+  return 0.0f;
+}
+
+// --- a section
+
+LAMINA_FN float lamina_unused(float x) { return UNUSED_CONSTANT * x; }
+)";
+  std::vector<glsl::KernelSource> sources{glsl::split_kernel("test.glsl", text)};
+  std::vector<std::string> names;
+  for (const glsl::KernelPiece& p : sources[0].pieces)
+    for (const std::string& n : p.defines) names.push_back(n);
+  CHECK(names == std::vector<std::string>{"LAMINA_FN", "HALF", "UNUSED_CONSTANT", "lamina_helper", "lamina_helper_more",
+                                          "lamina_unused"});
+
+  // Calling lamina_helper alone: not lamina_helper_more, whose name starts the same way.
+  std::string helper = glsl::needed_kernels(sources, "float y = lamina_helper(1.0f);  // not lamina_unused\n");
+  CHECK(helper.find("LAMINA_FN float lamina_helper(float x) { return x * HALF; }\n") != std::string::npos);
+  CHECK(helper.find("const float HALF = 0.5f;\n") != std::string::npos);
+  CHECK(helper.find("#ifndef LAMINA_FN\n#define LAMINA_FN\n#endif\n") != std::string::npos);
+  CHECK(helper.find("float lamina_helper_more(") == std::string::npos);
+  CHECK(helper.find("float lamina_unused(") == std::string::npos);
+  CHECK(helper.find("UNUSED_CONSTANT") == std::string::npos);
+  CHECK(helper.find("// --- a section") == std::string::npos);  // its only declaration is not needed
+  CHECK(helper.rfind("// ---- kernels: nodes/kernels/test.glsl\n// lamina kernels: a test file.\n", 0) == 0);
+
+  // lamina_helper_more pulls in lamina_helper and HALF, but its comments pull in nothing.
+  std::string more = glsl::needed_kernels(sources, "lamina_helper_more(x, y)");
+  CHECK(more.find("float lamina_helper(float x)") != std::string::npos);
+  CHECK(more.find("/* A block comment that mentions lamina_unused(x). */\nLAMINA_FN float lamina_helper_more(") !=
+        std::string::npos);
+  CHECK(more.find("float lamina_unused(") == std::string::npos);
+
+  // Everything needed: the file comes back whole, with its blank lines.
+  CHECK(glsl::needed_kernels(sources, "lamina_helper_more(lamina_unused(1.0f), 2.0f)") ==
+        "// ---- kernels: nodes/kernels/test.glsl\n" + text + "\n");
+  // Nothing needed: nothing at all, not even the file's comment.
+  CHECK(glsl::needed_kernels(sources, "// lamina_helper\nvec3 f = vec3(HALF_2);\n").empty());
+
+  CHECK(glsl::identifiers("x = 1.0e-5f + .5e+3 * 0x1Fu; // y\n/* z */ #define W w") ==
+        std::set<std::string>{"W", "w", "x"});
+  CHECK_THROWS_AS(glsl::split_kernel("bad.glsl", "float f() { return 1.0f; } float g;\n"), std::logic_error);
+  CHECK_THROWS_AS(glsl::split_kernel("bad.glsl", "float f() { return 1.0f;\n"), std::logic_error);
+  CHECK_THROWS_AS(glsl::split_kernel("bad.glsl", "#ifdef X\nfloat f() { return 1.0f; }\n#endif\n"), std::logic_error);
+}
+
+namespace {
+
+// The kernel part of a generated module, per kernel file: from its "// ---- kernels:" line to
+// the next one or to the first line of generated code.
+std::map<std::string, std::string> kernel_chunks(const std::string& module) {
+  const std::string marker = "// ---- kernels: nodes/kernels/";
+  size_t code = std::min(module.find("// texture/image lookups:"), module.find("// ======"));
+  std::map<std::string, std::string> chunks;
+  for (size_t at = module.find(marker); at < code;) {
+    size_t name_end = module.find('\n', at);
+    std::string name = module.substr(at + marker.size(), name_end - at - marker.size());
+    size_t next = std::min(module.find(marker, name_end), code);
+    chunks[name] = module.substr(name_end + 1, next - name_end - 1);
+    at = next;
+  }
+  return chunks;
+}
+
+}  // namespace
+
+TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each verbatim and in order") {
+  std::vector<glsl::KernelSource> disk = kernels_on_disk();
+  for (const fs::path& file : glsl_material_files()) {
+    Compiled c = compile_file(file);
+    for (bool sphere : {false, true}) {
+      std::string source = generate(c.programs, glsl::Target::Glsl330, false, sphere);
+      std::map<std::string, std::string> chunks = kernel_chunks(source);
+      REQUIRE(!chunks.empty());
+      std::string material_code =
+          source.substr(std::min(source.find("// texture/image lookups:"), source.find("// ======")));
+      std::set<std::string> emitted, used = glsl::identifiers(material_code), declared;
+      for (const glsl::KernelSource& k : disk) {
+        for (const glsl::KernelPiece& piece : k.pieces) declared.insert(piece.defines.begin(), piece.defines.end());
+        auto chunk = chunks.find(k.name);
+        if (chunk == chunks.end()) continue;
+        // Walk the chunk: after blank lines, the next text must be a piece of the file, verbatim,
+        // later in the file than the one before.
+        const std::string& text = chunk->second;
+        size_t at = 0, piece = 0;
+        while (at < text.size()) {
+          if (text[at] == '\n') {
+            ++at;
+            continue;
+          }
+          while (piece < k.pieces.size() && (k.pieces[piece].kind == glsl::KernelPiece::Kind::Space ||
+                                             text.compare(at, k.pieces[piece].text.size(), k.pieces[piece].text) != 0))
+            ++piece;
+          REQUIRE_MESSAGE(piece < k.pieces.size(), file.filename().string() << ", " << k.name << ": not verbatim at\n"
+                                                                            << text.substr(at, 200));
+          at += k.pieces[piece].text.size();
+          emitted.insert(k.pieces[piece].defines.begin(), k.pieces[piece].defines.end());
+          for (const std::string& u : k.pieces[piece].uses)
+            if (std::find(k.pieces[piece].defines.begin(), k.pieces[piece].defines.end(), u) ==
+                k.pieces[piece].defines.end())
+              used.insert(u);
+          ++piece;
+        }
+      }
+      // Closed: every kernel name the code or an emitted piece uses is emitted. Needed: every
+      // emitted name is used by the material code or by another emitted piece.
+      for (const std::string& name : used)
+        CHECK_MESSAGE((declared.count(name) == 0 || emitted.count(name) == 1), file.filename().string()
+                                                                                   << ": " << name);
+      for (const std::string& name : emitted)
+        CHECK_MESSAGE(used.count(name) == 1, file.filename().string() << ": " << name);
+    }
+  }
+}
+
+TEST_CASE("glsl: a kernel function is in a module exactly when a node of the material needs it") {
+  for (const fs::path& file : glsl_material_files()) {
+    Compiled c = compile_file(file);
+    for (const Program& p : c.programs) {
+      auto has_stack = [&](auto pick) {
+        return std::any_of(p.stack.begin(), p.stack.end(), [&](const StackNode& n) { return pick(n); });
+      };
+      auto has_op = [&](auto pick) {
+        return std::any_of(p.ops.begin(), p.ops.end(), [&](const TextureOp& op) { return pick(op); });
+      };
+      const std::pair<const char*, bool> expected[] = {
+          {"oren_nayar", has_stack([](const StackNode& n) { return std::holds_alternative<OrenNayarNode>(n); })},
+          {"lamina_lambert_eval", has_stack([](const StackNode& n) { return std::holds_alternative<LambertNode>(n); })},
+          {"lamina_conductor_eval",
+           has_stack([](const StackNode& n) { return std::holds_alternative<ConductorNode>(n); })},
+          {"lamina_interface_eval", has_stack([](const StackNode& n) { return std::holds_alternative<LayerNode>(n); })},
+          {"checker_value", has_op([](const TextureOp& op) { return std::holds_alternative<CheckerOp>(op); })},
+          {"remap_value", has_op([](const TextureOp& op) { return std::holds_alternative<RemapOp>(op); })},
+          {"lamina_bilinear_texels", has_op([](const TextureOp& op) { return std::holds_alternative<ImageOp>(op); })},
+          {"srgb_to_linear", false},  // images are decoded on the host
+      };
+      for (bool uniforms : {false, true}) {
+        std::set<std::string> names = glsl::identifiers(generate({p}, glsl::Target::Glsl450, uniforms));
+        for (const auto& [function, needed] : expected)
+          CHECK_MESSAGE(bool(names.count(function)) == needed, p.name << ": " << function);
+      }
+    }
+  }
+  // The audit's example: car paint has no Oren-Nayar base, so the name does not occur at all.
+  Compiled car = compile_file(test::source_dir() / "examples/materials/car_paint.json");
+  CHECK(generate(car.programs, glsl::Target::Glsl330, false).find("oren_nayar") == std::string::npos);
+}
+
 TEST_CASE("glsl: output is deterministic and readable") {
   Compiled c = compile_file(test::source_dir() / "examples/materials/patina_map_copper.json");
   for (glsl::Target target : kTargets) {
@@ -276,7 +479,7 @@ TEST_CASE("glsl: uniform mode lays out std140 blocks and packs the file's values
   CHECK(module.source.find("lamina_every_node_u.blinn_coat_ior") != std::string::npos);
 }
 
-TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file; bad input writes nothing") {
+TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file, and bad input writes nothing") {
   test::TempDir dir;
   fs::path car = test::source_dir() / "examples/materials/car_paint.json";
   auto r =
@@ -288,6 +491,7 @@ TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file; ba
 
   r = test::run_cli("glsl '" + car.string() + "' --target 460 -o bad.frag", dir.path());
   CHECK(r.exit_code == 2);
+  CHECK(r.err.find("'460' is not a target (330, 450 or es300)") != std::string::npos);
   CHECK(!fs::exists(dir.path() / "bad.frag"));
 
   fs::path broken = dir.path() / "broken.json";
@@ -306,4 +510,58 @@ TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file; ba
   r = test::run_cli("glsl '" + car.string() + "' -o -", dir.path());
   CHECK(r.exit_code == 0);
   CHECK(r.out.rfind("#version 330 core\n", 0) == 0);
+}
+
+TEST_CASE("glsl: the CLI names the side file after OUT, refuses to drop it, and writes both files or neither") {
+  test::TempDir dir;
+  fs::path car = test::source_dir() / "examples/materials/car_paint.json";
+  // OUT's extension is replaced: car.glsl -> car.uniforms.json.
+  auto r = test::run_cli("glsl '" + car.string() + "' --uniforms -o car.glsl", dir.path());
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(dir.path() / "car.glsl"));
+  CHECK(fs::exists(dir.path() / "car.uniforms.json"));
+  CHECK(!fs::exists(dir.path() / "car.glsl.uniforms.json"));
+
+  // The module on standard output: --uniforms needs --interface for the side file.
+  r = test::run_cli("glsl '" + car.string() + "' --uniforms -o -", dir.path());
+  CHECK(r.exit_code == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.find("--interface") != std::string::npos);
+  r = test::run_cli("glsl '" + car.string() + "' --uniforms -o - --interface side.json", dir.path());
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("layout(std140) uniform lamina_car_paint_block") != std::string::npos);
+  CHECK(test::read_file(dir.path() / "side.json").find("\"lamina_car_paint_block\"") != std::string::npos);
+
+  // A side file that cannot be written: exit 1, and neither the module nor a temporary file is left.
+  r = test::run_cli("glsl '" + car.string() + "' --uniforms -o alone.glsl --interface missing_dir/side.json",
+                    dir.path());
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("missing_dir/side.json") != std::string::npos);
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir.path())) left.push_back(entry.path().filename().string());
+  std::sort(left.begin(), left.end());
+  CHECK(left == std::vector<std::string>{"car.glsl", "car.uniforms.json", "side.json"});
+
+  r = test::run_cli("glsl '" + car.string() + "' --uniforms -o same.glsl --interface ./same.glsl", dir.path());
+  CHECK(r.exit_code == 2);
+  CHECK(!fs::exists(dir.path() / "same.glsl"));
+}
+
+TEST_CASE("glsl: the header names the material file, not the path it was given by, and lists std140 without tabs") {
+  test::TempDir dir;
+  fs::copy_file(test::source_dir() / "tests/data/glsl/every_node.json", dir.path() / "every_node.json");
+  fs::create_directory(dir.path() / "sub");
+  auto a = test::run_cli("glsl every_node.json --uniforms -o - --interface a.json", dir.path());
+  auto b = test::run_cli("glsl ../every_node.json --uniforms -o - --interface b.json", dir.path() / "sub");
+  auto c = test::run_cli("glsl '" + (dir.path() / "every_node.json").string() + "' --uniforms -o - --interface c.json",
+                         dir.path());
+  REQUIRE(a.exit_code == 0);
+  CHECK(a.out == b.out);
+  CHECK(a.out == c.out);
+  CHECK(a.out.find("// material \"every_node\" from every_node.json\n") != std::string::npos);
+  CHECK(a.out.find('\t') == std::string::npos);
+  // The block's members in aligned columns: offset, type, name = the file's value.
+  CHECK(a.out.find("//   offset  type   member = value in the file\n") != std::string::npos);
+  CHECK(a.out.find("  vec2   tiles_scale = 4.0 3.0\n") != std::string::npos);
+  CHECK(a.out.find("  float  blinn_coat_ior = 1.6\n") != std::string::npos);
 }
