@@ -61,6 +61,7 @@ LAMINA_FN vec3 lamina_lambert_eval(vec3 l, vec3 v, vec3 albedo) {
 }
 
 // --- sampling ------------------------------------------------------------------------------------
+
 // Lobe selection (course sec. 3.2.3) estimates each lobe's share at wo: its Fresnel reflectance
 // or albedo times what the layers above let through twice. One layer of that product: returns wo
 // refracted below an interface of relative index eta (z <= 0 when it cannot enter) and sets
