@@ -16,7 +16,7 @@ const cpu = JSON.parse(fs.readFileSync(process.argv[1], "utf8"));
 // Nanoseconds per evaluation (a batch benchmark processes many per iteration).
 const ns = {};
 for (const b of cpu.benchmarks) ns[b.name] = 1e9 / b.items_per_second;
-const rows = [["eval", "BM_eval_"], ["eval batch", "BM_eval_batch_"], ["sample", "BM_sample_"]];
+const rows = [["eval", "BM_eval_"], ["eval batch", "BM_eval_batch_"], ["eval_pdf b.", "BM_eval_pdf_batch_"], ["sample", "BM_sample_"]];
 console.log("CPU evaluator, ratio to a single Torrance-Sparrow lobe (same run):");
 for (const [label, prefix] of rows) {
   const base = ns[prefix + "single_lobe"];
