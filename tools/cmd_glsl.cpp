@@ -3,10 +3,7 @@
 // The material(s) as one GLSL module (graph/glsl/generator.h), plus a JSON side file describing
 // the uniform blocks and samplers: with --uniforms it is OUT with its extension replaced by
 // .uniforms.json (car.glsl -> car.uniforms.json), or --interface FILE names it.
-#include <cstddef>
-#include <fstream>
 #include <iostream>
-#include <utility>
 #include <vector>
 
 #include "graph/glsl/generator.h"
@@ -31,42 +28,6 @@ struct GlslOptions {
 // The side file's default place: OUT with its extension replaced, car.glsl -> car.uniforms.json
 // (an OUT without an extension gets one: car -> car.uniforms.json).
 fs::path default_side_file(const std::string& output) { return fs::path(output).replace_extension(".uniforms.json"); }
-
-// Writes every file through a temporary file beside it and then renames them all, so that a
-// failure leaves nothing of this run behind: no temporary file, no partial file, and not one
-// output without the other.
-bool write_together(const std::vector<std::pair<fs::path, std::string>>& files) {
-  std::vector<fs::path> temporaries;
-  auto remove_all = [](const std::vector<fs::path>& paths) {
-    std::error_code ec;
-    for (const fs::path& p : paths) fs::remove(p, ec);
-  };
-  for (const auto& [path, text] : files) {
-    fs::path temporary = path;
-    temporary += ".tmp";
-    temporaries.push_back(temporary);
-    std::ofstream out(temporary, std::ios::binary);
-    if (!(out << text) || !out.flush()) {
-      std::cerr << "lamina: cannot write " << path.string() << "\n";
-      out.close();
-      remove_all(temporaries);
-      return false;
-    }
-  }
-  std::vector<fs::path> written;
-  for (size_t i = 0; i < files.size(); ++i) {
-    std::error_code ec;
-    fs::rename(temporaries[i], files[i].first, ec);
-    if (ec) {
-      std::cerr << "lamina: cannot write " << files[i].first.string() << ": " << ec.message() << "\n";
-      remove_all(written);
-      remove_all(std::vector<fs::path>(temporaries.begin() + std::ptrdiff_t(i), temporaries.end()));
-      return false;
-    }
-    written.push_back(files[i].first);
-  }
-  return true;
-}
 
 int run_glsl(const GlslOptions& o) {
   glsl::Options options;
@@ -104,10 +65,10 @@ int run_glsl(const GlslOptions& o) {
     return kExitInvalid;
   }
 
-  std::vector<std::pair<fs::path, std::string>> files;
-  if (!to_stdout) files.emplace_back(o.output, module.source);
-  if (!side.empty()) files.emplace_back(side, glsl::interface_json(module, options));
-  if (!write_together(files)) return kExitIo;
+  std::vector<OutputFile> files;
+  if (!to_stdout) files.push_back({o.output, module.source});
+  if (!side.empty()) files.push_back({side, glsl::interface_json(module, options)});
+  if (!write_files(files)) return kExitIo;
   if (to_stdout) std::cout << module.source;
   return kExitOk;
 }

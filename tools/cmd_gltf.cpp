@@ -93,8 +93,10 @@ int run_gltf(const GltfOptions& o) {
   }
   for (const auto& note : result.notes) std::cerr << "lamina: note: " << note << "\n";
   // The side files first, so that the .gltf never names a buffer that is not there.
+  std::vector<OutputFile> files;
   for (auto it = result.files.rbegin(); it != result.files.rend(); ++it)
-    if (!write_file(it->path, std::string(it->bytes.begin(), it->bytes.end()))) return kExitIo;
+    files.push_back({it->path, std::string(it->bytes.begin(), it->bytes.end())});
+  if (!write_files(files)) return kExitIo;
   if (o.report) print_report(result);
   std::cout << "wrote " << output.string() << " (" << scene.objects.size() << " object"
             << (scene.objects.size() == 1 ? "" : "s") << ", " << result.materials.size() << " material"

@@ -49,8 +49,16 @@ int for_each_checked_file(const std::vector<std::string>& inputs,
 // was no error.
 bool print_diagnostics(const Diagnostics& diagnostics);
 
-// Writes `text` through a temporary file and a rename, so that a failure never leaves half a
-// file; on failure prints "lamina: cannot write ..." and returns false.
-bool write_file(const std::filesystem::path& path, const std::string& text);
+struct OutputFile {
+  std::filesystem::path path;
+  std::string text;
+};
+
+// Writes the files together: each through a temporary file beside it, then all renamed into place
+// in the given order, so that a failure leaves no temporary file, no half file, and none of the
+// files this call had already put in place. On failure prints "lamina: cannot write ..." and
+// returns false.
+bool write_files(const std::vector<OutputFile>& files);
+bool write_file(const std::filesystem::path& path, const std::string& text);  // write_files of one
 
 }  // namespace lamina::cli
