@@ -44,8 +44,8 @@ std::vector<WeightedDirection> hemisphere_quadrature(glm::vec3 wo, std::span<con
   out.reserve(size_t(strategies * per_strategy));
   for (int s = 0; s < strategies; ++s) {
     for (int i = 0; i < per_strategy; ++i) {
-      float u1 = (float(i) + 0.5f) / float(per_strategy), u2 = radical_inverse_base2(uint32_t(i));
-      float phi = 2.0f * kPi * u2;
+      const glm::vec2 u = hammersley(uint32_t(i), uint32_t(per_strategy));
+      const float u1 = u.x, phi = 2.0f * kPi * u.y;
       glm::vec3 wi;
       if (s == 0) {
         // Cosine-weighted: Malley's method (a uniform disk point projected up).
