@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "graph/cpu/frame.h"
+#include "nodes/kernels/kernels.h"
 #include "tools/commands.h"
 #include "tools/material_arg.h"
 
@@ -310,15 +311,6 @@ void draw_slice_labels(Text& text, const Layout& l, const Slice& slice, const Sl
             kTextDim, 0, false, plot_width);
 }
 
-float srgb_encode(float linear) {
-  linear = std::clamp(linear, 0.0f, 1.0f);
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
-
-float srgb_decode(float encoded) {
-  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
-}
-
 // An orthographic view down -z of the unit sphere, one directional light from the upper left with
 // irradiance pi (a white Lambertian surface facing it shows 1), plus a uniform sky of radiance
 // `ambient`, which a surface reflects as ambient times its directional albedo at wo (the albedo is
@@ -334,7 +326,7 @@ void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec
   int diameter = std::min(area.x1 - area.x0, area.y1 - area.y0);
   float radius = 0.5f * float(diameter);
   float cx = 0.5f * float(area.x0 + area.x1), cy = 0.5f * float(area.y0 + area.y1);
-  vec3 background_linear(srgb_decode(background.r), srgb_decode(background.g), srgb_decode(background.b));
+  vec3 background_linear = kernels::srgb_to_linear(background);
   std::vector<vec3> sky_table;
   if (ambient > 0.0f && evaluator.program().ops.empty())
     for (int i = 0; i <= kSkyTableSize; ++i) {
@@ -383,7 +375,7 @@ void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, vec
           sum += display;
         }
       vec3 mean = sum / float(n * n);
-      canvas.at(x, y) = vec3(srgb_encode(mean.r), srgb_encode(mean.g), srgb_encode(mean.b));
+      canvas.at(x, y) = kernels::srgb_from_linear(mean);
     }
   };
   int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));

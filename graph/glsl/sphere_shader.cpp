@@ -22,19 +22,11 @@ const int lamina_ambient_samples = 16;
 
 layout(location = 0) out vec4 lamina_color;
 
-// The sRGB OETF (IEC 61966-2-1), after clamping to [0, 1].
-vec3 lamina_srgb_encode(vec3 c) {
-  c = clamp(c, vec3(0.0f), vec3(1.0f));
-  vec3 low = c * 12.92f;
-  vec3 high = 1.055f * pow(c, vec3(1.0f / 2.4f)) - 0.055f;
-  return mix(high, low, vec3(lessThanEqual(c, vec3(0.0031308f))));
-}
-
 void main() {
   vec2 q = (2.0f * gl_FragCoord.xy - lamina_viewport) / min(lamina_viewport.x, lamina_viewport.y);
   float r2 = dot(q, q);
   if (r2 >= 1.0f) {
-    lamina_color = vec4(lamina_srgb_encode(lamina_background), 1.0f);
+    lamina_color = vec4(srgb_from_linear(lamina_background), 1.0f);
     return;
   }
   vec3 n = vec3(q, sqrt(1.0f - r2));
@@ -66,7 +58,7 @@ void main() {
     }
   }
   radiance += lamina_ambient_radiance * albedo / float(lamina_ambient_samples);
-  lamina_color = vec4(lamina_srgb_encode(radiance), 1.0f);
+  lamina_color = vec4(srgb_from_linear(radiance), 1.0f);
 }
 )";
 

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "graph/cpu/evaluator.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina::gltf {
 
@@ -22,17 +23,6 @@ PbrParams lerp(const PbrParams& a, const PbrParams& b, float t) {
   p.clearcoat = std::lerp(a.clearcoat, b.clearcoat, t);
   p.clearcoat_roughness = std::lerp(a.clearcoat_roughness, b.clearcoat_roughness, t);
   return p;
-}
-
-// The sRGB encoding (IEC 61966-2-1), inverse of the decoding texture/image applies; glTF stores
-// base colour textures encoded this way.
-glm::vec3 linear_to_srgb(glm::vec3 c) {
-  glm::vec3 out;
-  for (int i = 0; i < 3; ++i) {
-    float v = std::clamp(c[i], 0.0f, 1.0f);
-    out[i] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-  }
-  return out;
 }
 
 uint8_t to_byte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
@@ -154,7 +144,9 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   glm::dvec3 specular_color(0.0), base_mean(0.0);
   double metallic_mean = 0.0, roughness_mean = 0.0, clearcoat_mean = 0.0, clearcoat_roughness_mean = 0.0;
   for (const auto& p : texel_params) {
-    for (int c = 0; c < 3; ++c) base[c].add(linear_to_srgb(p.base_color)[c]);
+    // glTF stores base colour textures sRGB-encoded: their bytes vary where the encoded values do.
+    const glm::vec3 srgb = kernels::srgb_from_linear(p.base_color);
+    for (int c = 0; c < 3; ++c) base[c].add(srgb[c]);
     metallic.add(p.metallic);
     roughness.add(p.roughness);
     clearcoat.add(p.clearcoat);
@@ -178,7 +170,7 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   if (base[0].varies() || base[1].varies() || base[2].varies()) {
     BakedImage image{size, 3, std::vector<uint8_t>(texels * 3)};
     for (size_t t = 0; t < texels; ++t) {
-      glm::vec3 srgb = linear_to_srgb(texel_params[t].base_color);
+      glm::vec3 srgb = kernels::srgb_from_linear(texel_params[t].base_color);
       for (int c = 0; c < 3; ++c) image.pixels[t * 3 + static_cast<size_t>(c)] = to_byte(srgb[c]);
     }
     out.base_color = std::move(image);

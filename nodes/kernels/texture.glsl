@@ -28,3 +28,13 @@ LAMINA_FN vec3 srgb_to_linear(vec3 c) {
   // step(c, 0.04045) is 1 exactly where c <= 0.04045.
   return mix(hi, lo, step(c, vec3(0.04045f)));
 }
+
+// The sRGB OETF per channel, the inverse of srgb_to_linear (IEC 61966-2-1:1999, sec. 5.3), for
+// display: c is clamped to [0, 1], then 12.92 c for c <= 0.0031308, else 1.055 c^(1/2.4) - 0.055.
+LAMINA_FN vec3 srgb_from_linear(vec3 c) {
+  c = clamp(c, vec3(0.0f), vec3(1.0f));
+  vec3 lo = 12.92f * c;
+  vec3 hi = 1.055f * pow(c, vec3(1.0f / 2.4f)) - 0.055f;
+  // step(c, 0.0031308) is 1 exactly where c <= 0.0031308.
+  return mix(hi, lo, step(c, vec3(0.0031308f)));
+}

@@ -54,7 +54,7 @@ void main() {
   s += absorption(vec3(0.6f, 1.0f, 1.0f), 0.5f, c, w.z);
   // texture
   f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
-  s += srgb_to_linear(w);
+  s += srgb_to_linear(w) + srgb_from_linear(w);
   // stack
   vec3 lb = vec3(0.0f);
   vec3 vb = vec3(0.0f);

@@ -604,6 +604,22 @@ TEST_CASE("kernels: srgb_to_linear is the IEC 61966-2-1 EOTF") {
   CHECK(double(k::srgb_to_linear(vec3(-0.1f)).x) == rel(-0.1 / 12.92));
 }
 
+TEST_CASE("kernels: srgb_from_linear is the IEC 61966-2-1 OETF, clamped, and inverts srgb_to_linear") {
+  // 1.055 * 0.5^(1/2.4) - 0.055, 12.92 * 0.002, 1.055 * 0.9^(1/2.4) - 0.055
+  CHECK_VEC3(k::srgb_from_linear(vec3(0.5f, 0.002f, 0.9f)), 0.7353569830524495, 0.02584, 0.9546871718858662);
+  CHECK(k::srgb_from_linear(vec3(0.0f)) == vec3(0.0f));
+  CHECK_VEC3(k::srgb_from_linear(vec3(1.0f)), 1.0, 1.0, 1.0);
+  // Outside [0, 1] it clamps (a display value), without NaN.
+  CHECK(k::srgb_from_linear(vec3(-0.5f, 2.0f, -1.0e30f)) == k::srgb_from_linear(vec3(0.0f, 1.0f, 0.0f)));
+  // The two branches meet at 0.0031308.
+  vec3 below = k::srgb_from_linear(vec3(0.0031308f)), above = k::srgb_from_linear(vec3(0.0031309f));
+  CHECK(std::abs(below.x - above.x) < 1e-5f);
+  // The EOTF undoes it: 0.21404114048223255 is the linear value of 0.5.
+  CHECK(double(k::srgb_from_linear(vec3(0.21404114048223255f)).x) == rel(0.5));
+  for (float c : {0.001f, 0.04f, 0.2f, 0.6f, 0.95f})
+    CHECK(double(k::srgb_to_linear(k::srgb_from_linear(vec3(c))).x) == rel(double(c), 2e-6));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Every kernel, at and below the horizon and in the smooth limit.
 
