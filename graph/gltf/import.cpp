@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
+#include <vector>
 
 #include "graph/cpu/image.h"
 #include "graph/gltf/export.h"
@@ -132,9 +133,11 @@ class Importer {
     // Label materials (lamina's export marks them) show text, not a surface: they are left out,
     // and so are the extensions only they use.
     std::set<std::string> label_extensions, material_extensions;
+    std::vector<bool> label_at(model_.materials.size());
     size_t labels = 0;
-    for (const auto& gm : model_.materials) {
-      const bool label = is_label(gm);
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& gm = model_.materials[i];
+      const bool label = label_at[i] = is_label(gm);
       labels += label;
       const Json extensions = parse_object(gm.extensions_json_string);
       for (const auto& [name, value] : extensions.items())
@@ -151,7 +154,7 @@ class Importer {
                              "extension '" + name + "' is not read by lamina import; it is ignored");
     }
     for (size_t i = 0; i < model_.materials.size(); ++i)
-      if (!is_label(model_.materials[i])) import_material(i);
+      if (!label_at[i]) import_material(i);
     if (labels > 0)
       result_.notes.push_back(std::to_string(labels) + " object label material" + (labels == 1 ? " was" : "s were") +
                               " left out");
