@@ -57,6 +57,13 @@ const std::vector<Example>& examples() {
   return all;
 }
 
+// The example or test material of that name; fails the test when there is none.
+const Example& example_named(const std::string& name) {
+  auto it = std::find_if(examples().begin(), examples().end(), [&](const Example& e) { return e.name == name; });
+  REQUIRE_MESSAGE(it != examples().end(), "no example " << name);
+  return *it;
+}
+
 float to_unit_float(double u) { return std::min(float(u), 0x1.fffffep-1f); }
 
 ShadingContext at_uv(vec2 uv) {
@@ -1282,9 +1289,7 @@ TEST_CASE("every stack without mixes matches an independent transcription of Ele
 // --- 9: the mix ----------------------------------------------------------------------------------
 
 TEST_CASE("checker tiles evaluate as the red stack on red squares and as the gold stack on gold squares") {
-  auto it =
-      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "checker_tiles"; });
-  REQUIRE(it != examples().end());
+  const Example& example = example_named("checker_tiles");
   // The two stacks of examples/materials/checker_tiles.json, each on its own.
   cpu::Evaluator red = test::evaluator_from_text(R"({"format": 1, "materials": [{"name": "red", "surface": "@coat",
     "nodes": [
@@ -1309,7 +1314,7 @@ TEST_CASE("checker tiles evaluate as the red stack on red squares and as the gol
     vec2 uv((float(su) + 0.1f + 0.8f * float(test::uniform(rng))) / 8.0f,
             (float(sv) + 0.1f + 0.8f * float(test::uniform(rng))) / 8.0f);
     const cpu::Evaluator& alone = (su + sv) % 2 == 0 ? red : gold;
-    vec3 mixed = it->evaluator.eval(at_uv(uv), wi, wo), expected = alone.eval(ShadingContext{}, wi, wo);
+    vec3 mixed = example.evaluator.eval(at_uv(uv), wi, wo), expected = alone.eval(ShadingContext{}, wi, wo);
     ++compared;
     if (mixed != expected && differs++ == 0)
       first = "uv " + describe(vec3(uv, 0.0f)) + ": mix " + describe(mixed) + " vs stack alone " + describe(expected);
@@ -1321,9 +1326,7 @@ TEST_CASE("checker tiles evaluate as the red stack on red squares and as the gol
 TEST_CASE("house paint's middle interface is inert under the relative index: it evaluates as its top coat alone") {
   // Both of its coats have index 1.3, so the middle one has eta = 1: F = 0, T = 1, t = 1 (README,
   // "Energy"; the example's notes). Only float rounding of the refraction through it remains.
-  auto it =
-      std::find_if(examples().begin(), examples().end(), [](const Example& e) { return e.name == "house_paint"; });
-  REQUIRE(it != examples().end());
+  const Example& example = example_named("house_paint");
   cpu::Evaluator top_only = test::evaluator_from_text(R"({"format": 1, "materials": [{"name": "top", "surface": "@top",
     "nodes": [
       {"id": "top", "type": "layer", "interface": "@top_iface", "base": "@paint"},
@@ -1335,14 +1338,14 @@ TEST_CASE("house paint's middle interface is inert under the relative index: it 
     vec3 wo = test::to_float(upper_direction(rng, nullptr, 0.0, 0.0, 0.0));
     dvec3 wo_d = test::to_double(wo);
     vec3 wi = test::to_float(upper_direction(rng, &wo_d, 0.3, 1.0e-3, 0.5));
-    vec3 a = it->evaluator.eval(ShadingContext{}, wi, wo), b = top_only.eval(ShadingContext{}, wi, wo);
+    vec3 a = example.evaluator.eval(ShadingContext{}, wi, wo), b = top_only.eval(ShadingContext{}, wi, wo);
     for (int c = 0; c < 3; ++c)
       worst = std::max(worst, std::abs(double(a[c]) - double(b[c])) / std::max(double(b[c]), 1.0e-12));
   }
   CHECK(worst <= 1.0e-5);
   MESSAGE("house_paint vs its top coat alone: largest relative difference " << worst);
   // Its lobe selection, too, gives the middle interface only the floor share (F = 0).
-  std::vector<float> w = it->evaluator.lobe_weights(ShadingContext{}, glm::normalize(vec3(0.3f, 0.0f, 1.0f)));
+  std::vector<float> w = example.evaluator.lobe_weights(ShadingContext{}, glm::normalize(vec3(0.3f, 0.0f, 1.0f)));
   REQUIRE(w.size() == 3);
   CHECK(w[1] < 0.01f);
 }

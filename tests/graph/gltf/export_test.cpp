@@ -56,13 +56,17 @@ gltf::ExportOptions quick() {
   return o;
 }
 
-const Json& find_material(const Json& gltf, const std::string& name) {
-  for (const auto& m : gltf["materials"])
-    if (m["name"] == name) return m;
-  FAIL("no material " << name);
+// The element of one of the glTF's arrays ("materials", "nodes", ...) with that name; fails the
+// test when there is none.
+const Json& named(const Json& gltf, const char* array, const std::string& name) {
+  for (const auto& element : gltf[array])
+    if (element["name"] == name) return element;
+  FAIL("no " << array << " element named " << name);
   static Json none;
   return none;
 }
+
+const Json& find_material(const Json& gltf, const std::string& name) { return named(gltf, "materials", name); }
 
 }  // namespace
 
@@ -250,13 +254,7 @@ Scene scene_of(const std::string& text) {
   return scene;
 }
 
-const Json& node_named(const Json& gltf, const std::string& name) {
-  for (const auto& n : gltf["nodes"])
-    if (n["name"] == name) return n;
-  FAIL("no node " << name);
-  static Json none;
-  return none;
-}
+const Json& node_named(const Json& gltf, const std::string& name) { return named(gltf, "nodes", name); }
 
 // `epsilon`: 1e-12 for values computed in double; vertices are floats (1e-6).
 void check_numbers(const Json& actual, std::initializer_list<double> expected, double epsilon = 1e-12) {
