@@ -7,6 +7,8 @@ find_package(glm REQUIRED)
 find_package(embree 3 REQUIRED)
 # A shared library in Debian: link TinyGLTF::TinyGLTF and never define TINYGLTF_IMPLEMENTATION.
 find_package(TinyGLTF REQUIRED)
+# libpng directly for PNG textures: OpenImageIO's PNG reader lets libpng print on standard error.
+find_package(PNG REQUIRED)
 
 # Debian's OpenImageIO target lists /usr/include/opencv4, which exists only with libopencv-dev;
 # CMake refuses non-existent include paths, so keep only the ones that exist.

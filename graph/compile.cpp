@@ -15,7 +15,8 @@ namespace {
 
 class Compiler {
  public:
-  Compiler(const Graph& graph, const std::string& file) : g_(graph), file_(file) {}
+  Compiler(const Graph& graph, const std::string& file, const AssetPolicy& policy)
+      : g_(graph), file_(file), policy_(policy) {}
 
   Program run() {
     program_.name = g_.material().name;
@@ -111,9 +112,12 @@ class Compiler {
       ImageOp op;
       op.node = g_.node(i).id;
       op.file = text(i, "file");
-      std::filesystem::path path(op.file);
-      if (path.is_relative()) path = std::filesystem::path(file_).parent_path() / path;
-      op.image = load_linear_image(path, text(i, "color_space") == "srgb");
+      try {
+        const Reference ref = resolve_reference(file_, op.file, ReferenceScope::AssetRoots, policy_);
+        op.image = load_image_reference(ref, text(i, "color_space") == "srgb", policy_);
+      } catch (const std::runtime_error& e) {  // ReferenceError, ImageError: the file changed since the check
+        throw IoError(file_ + ": texture file '" + op.file + "': " + e.what());
+      }
       op.uv_scale = vec2(i, "uv_scale");
       op.uv_offset = vec2(i, "uv_offset");
       op.uv_rotation_deg = float(std::get<double>(value(i, "uv_rotation_deg")));
@@ -209,6 +213,7 @@ class Compiler {
 
   const Graph& g_;
   const std::string& file_;
+  const AssetPolicy& policy_;
   Program program_;
   int slots_ = 0;
   std::map<std::pair<size_t, std::string>, Output> outputs_;
@@ -217,13 +222,20 @@ class Compiler {
 
 }  // namespace
 
-Program compile(const Graph& graph, const std::string& material_file) { return Compiler(graph, material_file).run(); }
+Program compile(const Graph& graph, const std::string& material_file, const AssetPolicy& policy) {
+  return Compiler(graph, material_file, policy).run();
+}
+
+Program compile(const Graph& graph, const std::string& material_file) {
+  return compile(graph, material_file, AssetPolicy{}.with_default_root(material_file));
+}
 
 Program compile(const Document& document, std::string_view material) {
-  CheckedFile checked = check_text(write_document(document), document.path);
+  CheckedFile checked = check_text(write_document(document), document.path, document.policy);
   if (!checked.ok()) throw Error(checked.diagnostics.errors());
   for (size_t i = 0; i < checked.document.materials.size(); ++i)
-    if (checked.document.materials[i].name == material) return compile(*checked.graphs[i], document.path);
+    if (checked.document.materials[i].name == material)
+      return compile(*checked.graphs[i], document.path, checked.document.policy);
   std::vector<std::string> names;
   for (const auto& m : checked.document.materials) names.push_back(m.name);
   throw Error(

@@ -10,8 +10,11 @@
 
 namespace lamina {
 
-// `graph` must come from a valid document (check_file(...).graphs). Texture paths are resolved
-// against `material_file`'s directory. Throws IoError when a texture cannot be decoded.
+// `graph` must come from a valid document (check_file(...).graphs). Texture files are followed
+// from `material_file` under `policy` (file_access.h), as the check did: pass the checked
+// document's policy. Throws IoError when a texture can no longer be read or decoded.
+Program compile(const Graph& graph, const std::string& material_file, const AssetPolicy& policy);
+// As above, with the default policy for `material_file` (its folder is the only root).
 Program compile(const Graph& graph, const std::string& material_file);
 
 // Checks `document` again, then compiles the material called `material`. Throws lamina::Error

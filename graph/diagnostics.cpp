@@ -7,10 +7,67 @@ namespace lamina {
 
 std::string format(const Diagnostic& d) {
   // RFC 6901: the empty pointer is the whole document ("/" would be the member named "").
-  std::string out = d.file + ":" + d.pointer + ": ";
+  std::string out = printable(d.file) + ":" + printable(d.pointer) + ": ";
   if (d.severity == Severity::Warning) out += "warning: ";
-  out += d.message;
-  if (!d.hint.empty()) out += " (" + d.hint + ")";
+  out += printable(d.message);
+  if (!d.hint.empty()) out += " (" + printable(d.hint) + ")";
+  return out;
+}
+
+std::string printable(std::string_view text) {
+  static const char digits[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  auto hex_byte = [&](unsigned char b) {
+    out += "\\x";
+    out += digits[b >> 4];
+    out += digits[b & 0xf];
+  };
+  for (size_t i = 0; i < text.size();) {
+    const auto b = static_cast<unsigned char>(text[i]);
+    if (b < 0x20 || b == 0x7f) {
+      switch (b) {
+        case '\n': out += "\\n"; break;
+        case '\r': out += "\\r"; break;
+        case '\t': out += "\\t"; break;
+        default: hex_byte(b);
+      }
+      ++i;
+      continue;
+    }
+    if (b < 0x80) {
+      out += static_cast<char>(b);
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: its length from the lead byte, then continuation bytes (RFC 3629 sec. 4,
+    // without overlong forms and surrogates).
+    size_t length = b >= 0xc2 && b <= 0xdf ? 2 : b >= 0xe0 && b <= 0xef ? 3 : b >= 0xf0 && b <= 0xf4 ? 4 : 0;
+    bool valid = length > 0 && i + length <= text.size();
+    for (size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
+    if (valid && length == 3) {
+      const auto b1 = static_cast<unsigned char>(text[i + 1]);
+      valid = !(b == 0xe0 && b1 < 0xa0) && !(b == 0xed && b1 >= 0xa0);
+    }
+    if (valid && length == 4) {
+      const auto b1 = static_cast<unsigned char>(text[i + 1]);
+      valid = !(b == 0xf0 && b1 < 0x90) && !(b == 0xf4 && b1 >= 0x90);
+    }
+    if (!valid) {
+      hex_byte(b);
+      ++i;
+      continue;
+    }
+    if (length == 2 && b == 0xc2 && static_cast<unsigned char>(text[i + 1]) < 0xa0) {
+      out += "\\u00";  // a C1 control, U+0080 to U+009F
+      const auto c = static_cast<unsigned char>(text[i + 1]);
+      out += digits[c >> 4];
+      out += digits[c & 0xf];
+    } else {
+      out.append(text.substr(i, length));
+    }
+    i += length;
+  }
   return out;
 }
 
@@ -34,17 +91,21 @@ static std::string first_message(const std::vector<Diagnostic>& diagnostics) {
 Error::Error(std::vector<Diagnostic> diagnostics)
     : std::runtime_error(first_message(diagnostics)), diagnostics_(std::move(diagnostics)) {}
 
-std::string pointer_append(std::string_view base, std::string_view token) {
-  std::string out(base);
-  out += '/';
+void append_pointer_token(std::string& pointer, std::string_view token) {
+  pointer += '/';
   for (char c : token) {
     if (c == '~')
-      out += "~0";
+      pointer += "~0";
     else if (c == '/')
-      out += "~1";
+      pointer += "~1";
     else
-      out += c;
+      pointer += c;
   }
+}
+
+std::string pointer_append(std::string_view base, std::string_view token) {
+  std::string out(base);
+  append_pointer_token(out, token);
   return out;
 }
 

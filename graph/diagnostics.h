@@ -18,8 +18,14 @@ struct Diagnostic {
   std::string hint;  // optional: what to write instead
 };
 
-// "file:pointer: message (hint)" -- the one format the CLI prints.
+// "file:pointer: message (hint)" -- the one format the CLI prints, on one line: every part passes
+// through printable(), so that nothing a file contains can move the cursor, colour the terminal
+// or start a line that looks like another message.
 std::string format(const Diagnostic& d);
+
+// `text` with control characters escaped: C0 controls, DEL and C1 controls as \n, \t, \x1b,
+// \u009b, and bytes that are not UTF-8 as \xHH; printable UTF-8 stays as it is.
+std::string printable(std::string_view text);
 
 // Errors and warnings travel separately so that callers can treat warnings as advice.
 class Diagnostics {
@@ -49,6 +55,7 @@ class Error : public std::runtime_error {
 };
 
 // JSON pointer helpers (RFC 6901 escaping of '~' and '/').
+void append_pointer_token(std::string& pointer, std::string_view token);  // in place: linear
 std::string pointer_append(std::string_view base, std::string_view token);
 std::string pointer_append(std::string_view base, size_t index);
 

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "graph/file_access.h"
 #include "graph/value.h"
 
 namespace lamina {
@@ -45,6 +46,7 @@ inline constexpr int kFormatVersion = 1;
 
 struct Document {
   std::string path;                   // where it was read from; not part of the content
+  AssetPolicy policy;                 // how its references are followed; not part of the content
   std::optional<std::string> schema;  // "$schema", kept so editors keep their completion
   int format = kFormatVersion;
   std::vector<Material> materials;

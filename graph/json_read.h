@@ -7,6 +7,7 @@
 
 #include "graph/diagnostics.h"
 #include "graph/document.h"
+#include "graph/file_access.h"
 #include "graph/registry.h"
 
 namespace lamina {
@@ -21,13 +22,5 @@ Document read_document(std::string_view text, const std::string& file, Diagnosti
 // Parses "@node" or "@node.output"; false if `text` is not a link.
 bool parse_link(std::string_view text, Link& link);
 bool is_identifier(std::string_view text);
-
-// Thrown when a file cannot be read at all (exit code 1, not a user mistake in the content).
-class IoError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-std::string read_text_file(const std::filesystem::path& path);  // throws IoError
 
 }  // namespace lamina

@@ -7,6 +7,7 @@ namespace lamina {
 namespace {
 
 void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry) {
+  const AssetPolicy& policy = out.document.policy;
   const Material& m = out.document.materials[index];
   const std::string& file = out.document.path;
   std::string pointer = "/materials/" + std::to_string(index);
@@ -20,7 +21,7 @@ void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry
     }
     if (decl->check) {
       std::string node_pointer = pointer + "/nodes/" + std::to_string(i);
-      decl->check(NodeCheckContext{m.nodes[i], file, node_pointer, out.diagnostics});
+      decl->check(NodeCheckContext{m.nodes[i], file, node_pointer, out.diagnostics, policy});
     }
   }
   // Links are resolved only when every node could be read with its id and type: against an
@@ -53,8 +54,14 @@ void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry
 }  // namespace
 
 CheckedFile check_text(std::string_view text, const std::string& file, const NodeRegistry& registry) {
+  return check_text(text, file, AssetPolicy{}, registry);
+}
+
+CheckedFile check_text(std::string_view text, const std::string& file, const AssetPolicy& policy,
+                       const NodeRegistry& registry) {
   CheckedFile out;
   out.document = read_document(text, file, out.diagnostics, registry);
+  out.document.policy = policy.with_default_root(file);
   out.graphs.resize(out.document.materials.size());
   for (size_t i = 0; i < out.document.materials.size(); ++i) check_material(out, i, registry);
   // A graph built from a document with errors elsewhere is still usable for messages, but
@@ -64,8 +71,18 @@ CheckedFile check_text(std::string_view text, const std::string& file, const Nod
   return out;
 }
 
-CheckedFile check_file(const std::filesystem::path& path, const NodeRegistry& registry) {
-  return check_text(read_text_file(path), path.string(), registry);
+CheckedFile check_file(const std::filesystem::path& path, const AssetPolicy& policy, const NodeRegistry& registry) {
+  std::string text;
+  try {
+    text = read_input_file(path, kMaxJsonFileBytes);
+  } catch (const Error& e) {  // too large: a mistake of the file, reported like the others
+    CheckedFile out;
+    out.document.path = path.string();
+    out.document.policy = policy.with_default_root(path);
+    for (const auto& d : e.diagnostics()) out.diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    return out;
+  }
+  return check_text(text, path.string(), policy, registry);
 }
 
 Document load(const std::filesystem::path& path) {

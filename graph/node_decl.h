@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "graph/file_access.h"
 #include "graph/value.h"
 
 namespace lamina {
@@ -71,6 +72,7 @@ struct NodeCheckContext {
   const std::string& file;          // the material file, for messages and relative paths
   const std::string& node_pointer;  // "/materials/0/nodes/3"
   Diagnostics& diagnostics;
+  const AssetPolicy& policy;  // how file parameters are followed (file_access.h)
 
   const Value* get(std::string_view name) const;
   void error(std::string_view param, std::string message, std::string hint = {}) const;

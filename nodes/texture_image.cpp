@@ -1,35 +1,28 @@
-// texture/image: an image file read through OpenImageIO, addressed by a transformed uv.
-#include <OpenImageIO/imageio.h>
-
-#include <filesystem>
-
+// texture/image: an image file, addressed by a transformed uv.
+#include "graph/cpu/image.h"
 #include "graph/diagnostics.h"
+#include "graph/file_access.h"
 #include "graph/node_decl.h"
 
 namespace lamina {
 
-// The file must exist and be an image OpenImageIO can read; relative paths start at the
-// directory of the material file.
+// The file is followed and decoded exactly as compiling the material will (file_access.h, the
+// pixel budget), so that what validates also loads.
 static void check_image(const NodeCheckContext& ctx) {
   const Value* file = ctx.get("file");
   if (!file || !std::holds_alternative<std::string>(*file)) return;
   const auto& name = std::get<std::string>(*file);
-  std::filesystem::path path(name);
-  if (path.is_relative()) path = std::filesystem::path(ctx.file).parent_path() / path;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    ctx.error("file", "texture file '" + name + "' not found (looked for " + path.string() + ")",
-              "paths are relative to the material file");
-    return;
+  try {
+    const Reference ref = resolve_reference(ctx.file, name, ReferenceScope::AssetRoots, ctx.policy);
+    const Value* space = ctx.get("color_space");
+    const bool srgb = !space || std::get<std::string>(*space) == "srgb";
+    load_image_reference(ref, srgb, ctx.policy);
+  } catch (const ReferenceError& e) {
+    ctx.error("file", std::string("texture file ") + e.what(), e.hint());
+  } catch (const ImageError& e) {
+    ctx.error("file", "texture file '" + name + "' is not a readable image: " + e.what(),
+              "lamina reads PNG, JPEG, OpenEXR, TIFF, HDR and the other formats of OpenImageIO");
   }
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) {
-    std::string why = OIIO::geterror();
-    ctx.error("file", "texture file '" + name + "' is not a readable image" + (why.empty() ? "" : ": " + why),
-              "lamina reads what OpenImageIO reads: PNG, JPEG, OpenEXR, TIFF, HDR, ...");
-    return;
-  }
-  input->close();
 }
 
 NodeDecl declare_texture_image() {
@@ -37,7 +30,8 @@ NodeDecl declare_texture_image() {
   d.type = "texture/image";
   d.kind = NodeKind::Texture;
   d.doc = "image file (any format OpenImageIO reads) looked up at (rotate(uv) * uv_scale + uv_offset)";
-  d.params.push_back(param("file", ValueType::String).described("image path, relative to the material file"));
+  d.params.push_back(param("file", ValueType::String)
+                         .described("image path, relative to the material file and inside the asset roots"));
   d.params.push_back(
       param("uv_scale", ValueType::Vec2).or_default(Vec2d{1.0, 1.0}).described("uv multiplier (tiling)"));
   d.params.push_back(

@@ -14,6 +14,12 @@ namespace lamina::test {
 
 std::filesystem::path source_dir() { return LAMINA_SOURCE_DIR; }
 
+AssetPolicy repository_policy() {
+  AssetPolicy policy;
+  policy.roots.push_back(source_dir());
+  return policy;
+}
+
 std::vector<std::filesystem::path> example_files() {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(source_dir() / "examples" / "materials"))

@@ -5,9 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "graph/file_access.h"
+
 namespace lamina::test {
 
 std::filesystem::path source_dir();
+// The policy under which test files reach across the repository (tests/data/scenes name
+// examples/materials): the repository is the one asset root.
+AssetPolicy repository_policy();
 std::vector<std::filesystem::path> example_files();  // examples/materials/*.json, sorted
 std::string read_file(const std::filesystem::path& path);
 

@@ -18,6 +18,7 @@ struct GltfOptions {
   bool report = false;
   int bake_size = 256;
   int columns = 4;
+  InputOptions input_options;
 };
 
 std::string fixed(double value, int decimals) {
@@ -66,10 +67,18 @@ int run_gltf(const GltfOptions& o) {
   Diagnostics diagnostics;
   try {
     const std::filesystem::path input(o.input);
-    if (looks_like_scene(read_text_file(input))) {
-      scene = read_scene_file(input, diagnostics);
+    const AssetPolicy policy = o.input_options.policy_for(input);
+    std::string text;
+    try {
+      text = read_input_file(input, kMaxJsonFileBytes);
+    } catch (const Error& e) {  // too large
+      for (const auto& d : e.diagnostics()) diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    }
+    if (!diagnostics.ok()) {
+    } else if (looks_like_scene(text)) {
+      scene = read_scene(text, input.string(), diagnostics, policy);
     } else {
-      CheckedFile checked = check_file(input);
+      CheckedFile checked = check_text(text, input.string(), policy);
       diagnostics = checked.diagnostics;
       if (checked.ok()) scene = sample_sheet(checked.document, input, o.columns);
     }
@@ -114,6 +123,7 @@ void add_gltf(CLI::App& app, Runner& runner) {
   cmd->add_option("-o,--output", o->output, "OUT.gltf (with OUT.bin next to it) or OUT.glb (self-contained)")
       ->required();
   cmd->add_flag("--report", o->report, "print each material's fallback fit and its errors");
+  add_input_options(*cmd, o->input_options);
   cmd->add_option("--bake-size", o->bake_size, "texels per side of fallback textures baked from texture nodes")
       ->capture_default_str();
   cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")

@@ -1,5 +1,6 @@
 // lamina import IN.gltf|IN.glb -o OUT.json [--force]: the glTF's materials as a lamina material
 // file, with the images they use extracted next to it (graph/gltf/import.h).
+#include <fstream>
 #include <iostream>
 
 #include "graph/gltf/import.h"
@@ -16,13 +17,14 @@ struct ImportOptions {
   bool force = false;
 };
 
+// Read directly, not through file_access.h: a file about to be replaced is no input.
 bool same_bytes(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
-  try {
-    const std::string existing = read_text_file(path);
-    return existing.size() == bytes.size() && std::equal(existing.begin(), existing.end(), bytes.begin());
-  } catch (const IoError&) {
-    return false;
-  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) != bytes.size()) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> existing(bytes.size());
+  in.read(reinterpret_cast<char*>(existing.data()), static_cast<std::streamsize>(existing.size()));
+  return in && existing == bytes;
 }
 
 int run_import(const ImportOptions& o) {

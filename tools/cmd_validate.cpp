@@ -15,9 +15,11 @@ struct ValidateOptions {
   bool json = false;
   bool quiet = false;
   bool werror = false;
+  InputOptions input_options;
 };
 
 nlohmann::json to_json(const Diagnostic& d) {
+  // Bytes that are not UTF-8 become U+FFFD: the report is JSON whatever the input held.
   return {{"severity", d.severity == Severity::Error ? "error" : "warning"},
           {"file", d.file},
           {"pointer", d.pointer},
@@ -34,11 +36,17 @@ struct Checked {
   size_t materials = 0;
 };
 
-Checked check_input(const std::filesystem::path& file) {
-  std::string text = read_text_file(file);
+Checked check_input(const std::filesystem::path& file, const AssetPolicy& policy) {
   Checked out;
+  std::string text;
+  try {
+    text = read_input_file(file, kMaxJsonFileBytes);
+  } catch (const Error& e) {  // too large
+    for (const auto& d : e.diagnostics()) out.diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    return out;
+  }
   if (looks_like_scene(text)) {
-    Scene scene = read_scene(text, file.string(), out.diagnostics);
+    Scene scene = read_scene(text, file.string(), out.diagnostics, policy);
     size_t materials = 0;
     for (const auto& f : scene.material_files) materials += f.document.materials.size();
     out.materials = materials;
@@ -46,7 +54,7 @@ Checked check_input(const std::filesystem::path& file) {
                   plural(scene.lights.size(), "light") + ", " + plural(scene.cameras.size(), "camera");
     return out;
   }
-  CheckedFile checked = check_text(text, file.string());
+  CheckedFile checked = check_text(text, file.string(), policy);
   out.diagnostics = std::move(checked.diagnostics);
   out.materials = checked.document.materials.size();
   out.summary = plural(out.materials, "material");
@@ -58,12 +66,13 @@ int run_validate(const ValidateOptions& o) {
   int code = inputs.code;
   size_t files = 0, valid = 0, materials = 0, warnings = 0;
   nlohmann::json report = nlohmann::json::array();
-  for (const auto& file : inputs.files) {
+  for (size_t i = 0; i < inputs.files.size(); ++i) {
+    const auto& file = inputs.files[i];
     Checked checked;
     try {
-      checked = check_input(file);
+      checked = check_input(file, o.input_options.policy_for(file, inputs.directories[i]));
     } catch (const IoError& e) {
-      std::cerr << "lamina: " << e.what() << "\n";
+      print_problem(e.what());
       code = kExitIo;
       continue;
     }
@@ -78,7 +87,7 @@ int run_validate(const ValidateOptions& o) {
       report.push_back(entry);
     } else {
       print_diagnostics(d);
-      if (file_ok && !o.quiet) std::cout << file.string() << ": ok (" << checked.summary << ")\n";
+      if (file_ok && !o.quiet) std::cout << printable(file.string()) << ": ok (" << checked.summary << ")\n";
     }
     if (file_ok) {
       ++valid;
@@ -89,7 +98,7 @@ int run_validate(const ValidateOptions& o) {
   }
   if (files == 0) return code;
   if (o.json) {
-    std::cout << report.dump(2) << "\n";
+    std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else if (!o.quiet) {
     std::cout << valid << " of " << files << " file" << (files == 1 ? "" : "s") << " valid, " << materials
               << " material" << (materials == 1 ? "" : "s") << ", " << warnings << " warning"
@@ -107,6 +116,7 @@ void add_validate(CLI::App& app, Runner& runner) {
   cmd->add_flag("--json", o->json, "print a JSON report instead of 'file:pointer: message' lines");
   cmd->add_flag("-q,--quiet", o->quiet, "print only problems");
   cmd->add_flag("--warnings-as-errors", o->werror, "treat warnings (unused nodes, class mismatch) as errors");
+  add_input_options(*cmd, o->input_options);
   cmd->callback([o, &runner] { runner = [o] { return run_validate(*o); }; });
 }
 

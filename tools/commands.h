@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 #include <vector>
+#include "graph/file_access.h"
 #include "graph/load.h"
 
 namespace lamina::cli {
@@ -29,12 +30,25 @@ void add_glsl(CLI::App& app, Runner& runner);
 void add_gltf(CLI::App& app, Runner& runner);
 void add_import(CLI::App& app, Runner& runner);
 
+// How the commands that read materials, scenes or glTF files follow the files those name
+// (graph/file_access.h): --asset-root DIR (repeatable) and --max-image-pixels N.
+struct InputOptions {
+  std::vector<std::string> asset_roots;
+  std::uint64_t max_image_pixels = kDefaultMaxImagePixels;
+
+  // The policy for the input file `file` (or, for the files found in a directory argument,
+  // `directory`): the given roots, or else that folder.
+  AssetPolicy policy_for(const std::filesystem::path& file, const std::filesystem::path& directory = {}) const;
+};
+void add_input_options(CLI::App& cmd, InputOptions& options);
+
 // The files named on a command line, directories expanded into the *.json files under them
 // (sorted); files stay as given. A path that does not exist (exit 1) or a directory without any
 // .json file (exit 2) is reported on stderr as "lamina: ..." and skipped, so that one wrong
 // argument does not hide what the others hold; `code` is the exit code those problems call for.
 struct Inputs {
   std::vector<std::filesystem::path> files;
+  std::vector<std::filesystem::path> directories;  // per file: the directory argument it was found in, or ""
   int code = kExitOk;
 };
 Inputs expand_inputs(const std::vector<std::string>& inputs);
@@ -42,8 +56,12 @@ Inputs expand_inputs(const std::vector<std::string>& inputs);
 // Checks every input file and hands each readable one to `visit`, which returns whether the
 // file passed. Returns the exit code: 1 if any input could not be read, else 2 if any file
 // failed, else 0. I/O problems are printed as "lamina: ..." lines.
-int for_each_checked_file(const std::vector<std::string>& inputs,
+int for_each_checked_file(const std::vector<std::string>& inputs, const InputOptions& options,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
+
+// "lamina: TEXT" on stderr, TEXT passed through printable(): how the commands report problems
+// that are not a file's (I/O errors, command-line mistakes, notes).
+void print_problem(std::string_view text);
 
 // Prints errors, then warnings, as "file:pointer: message" lines on stderr; returns whether there
 // was no error.

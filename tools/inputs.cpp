@@ -15,6 +15,27 @@ void raise_code(int& code, int problem) {
 
 }  // namespace
 
+void print_problem(std::string_view text) { std::cerr << "lamina: " << printable(text) << "\n"; }
+
+AssetPolicy InputOptions::policy_for(const std::filesystem::path& file, const std::filesystem::path& directory) const {
+  AssetPolicy policy;
+  policy.max_image_pixels = max_image_pixels;
+  for (const auto& root : asset_roots) policy.roots.emplace_back(root);
+  if (policy.roots.empty() && !directory.empty()) policy.roots.push_back(directory);
+  return policy.with_default_root(file);
+}
+
+void add_input_options(CLI::App& cmd, InputOptions& options) {
+  cmd.add_option("--asset-root", options.asset_roots,
+                 "a folder that files named by the input (textures, material files, meshes) may come from; "
+                 "repeatable (default: the input file's folder, or the directory given)")
+      ->check(CLI::ExistingDirectory);
+  cmd.add_option("--max-image-pixels", options.max_image_pixels,
+                 "largest image (width x height) to decode; larger ones are refused before decoding")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
+      ->capture_default_str();
+}
+
 bool print_diagnostics(const Diagnostics& diagnostics) {
   for (const auto& d : diagnostics.errors()) std::cerr << format(d) << "\n";
   for (const auto& d : diagnostics.warnings()) std::cerr << format(d) << "\n";
@@ -31,34 +52,37 @@ Inputs expand_inputs(const std::vector<std::string>& inputs) {
       for (const auto& entry : std::filesystem::recursive_directory_iterator(path, ec))
         if (entry.is_regular_file() && entry.path().extension() == ".json") found.push_back(entry.path());
       if (ec) {
-        std::cerr << "lamina: " << input << ": cannot list directory: " << ec.message() << "\n";
+        print_problem(input + ": cannot list directory: " + ec.message());
         raise_code(out.code, kExitIo);
       } else if (found.empty()) {
-        std::cerr << "lamina: " << input << ": no .json file in this directory, nothing to check\n";
+        print_problem(input + ": no .json file in this directory, nothing to check");
         raise_code(out.code, kExitInvalid);
       }
       std::sort(found.begin(), found.end());
       out.files.insert(out.files.end(), found.begin(), found.end());
+      out.directories.insert(out.directories.end(), found.size(), path);
     } else if (std::filesystem::exists(path, ec)) {
       out.files.push_back(path);
+      out.directories.emplace_back();
     } else {
-      std::cerr << "lamina: " << input << ": no such file or directory\n";
+      print_problem(input + ": no such file or directory");
       raise_code(out.code, kExitIo);
     }
   }
   return out;
 }
 
-int for_each_checked_file(const std::vector<std::string>& inputs,
+int for_each_checked_file(const std::vector<std::string>& inputs, const InputOptions& options,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit) {
   Inputs expanded = expand_inputs(inputs);
   int code = expanded.code;
-  for (const auto& file : expanded.files) {
+  for (size_t i = 0; i < expanded.files.size(); ++i) {
+    const auto& file = expanded.files[i];
     CheckedFile checked;
     try {
-      checked = check_file(file);
+      checked = check_file(file, options.policy_for(file, expanded.directories[i]));
     } catch (const IoError& e) {
-      std::cerr << "lamina: " << e.what() << "\n";
+      print_problem(e.what());
       code = kExitIo;
       continue;
     }

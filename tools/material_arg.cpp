@@ -14,14 +14,15 @@ namespace lamina::cli {
 void add_material_options(CLI::App& cmd, MaterialArg& arg) {
   cmd.add_option("file", arg.file, "a material file")->required();
   cmd.add_option("-m,--material", arg.material, "the material's name (may be omitted when the file has only one)");
+  add_input_options(cmd, arg.input_options);
 }
 
 int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out) {
   CheckedFile checked;
   try {
-    checked = check_file(arg.file);
+    checked = check_file(arg.file, arg.input_options.policy_for(arg.file));
   } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
+    print_problem(e.what());
     return kExitIo;
   }
   if (!print_diagnostics(checked.diagnostics)) return kExitInvalid;
@@ -60,9 +61,9 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
     const std::optional<Graph>& graph = checked.graphs[index];
     if (!graph) throw std::logic_error("load_programs: a valid file without a graph for " + names[index]);
     try {
-      out.push_back(compile(*graph, arg.file));
+      out.push_back(compile(*graph, arg.file, checked.document.policy));
     } catch (const IoError& e) {
-      std::cerr << "lamina: " << e.what() << "\n";
+      print_problem(e.what());
       return kExitIo;
     }
   }

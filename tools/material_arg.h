@@ -10,15 +10,17 @@
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
+#include "tools/commands.h"
 
 namespace lamina::cli {
 
 struct MaterialArg {
   std::string file;
   std::string material;  // empty: the file's only material
+  InputOptions input_options;
 };
 
-// Adds the positional FILE (required) and --material NAME to `cmd`.
+// Adds the positional FILE (required), --material NAME and the input options to `cmd`.
 void add_material_options(CLI::App& cmd, MaterialArg& arg);
 
 // Reads and checks the file, finds the material, compiles it and builds its evaluator. On failure

@@ -7,8 +7,8 @@ bash tools/setup.sh
 bash tools/build.sh release
 lamina=build/release/lamina
 echo
-echo "== lamina validate examples/materials examples/scenes"
-$lamina validate examples/materials examples/scenes
+echo "== lamina validate examples"
+$lamina validate examples
 echo
 echo "== lamina classify examples/materials"
 $lamina classify examples/materials
@@ -53,8 +53,8 @@ done
 echo
 gltf=build/gltf
 mkdir -p "$gltf"
-echo "== lamina gltf: examples/scenes/showcase.json to $gltf/showcase.glb, with the fitted fallback of every material"
-$lamina gltf examples/scenes/showcase.json -o "$gltf/showcase.glb" --report
+echo "== lamina gltf: examples/showcase.json to $gltf/showcase.glb, with the fitted fallback of every material"
+$lamina gltf examples/showcase.json -o "$gltf/showcase.glb" --report
 node tests/gltf/validate_gltf.mjs "$gltf/showcase.glb"
 echo
 echo "== lamina import: $gltf/showcase.glb back to lamina materials in $gltf/showcase_import/"

@@ -1,11 +1,19 @@
-// Texture images for the CPU evaluator: decoded once to linear RGBA floats, sampled bilinearly
-// the way a GPU samples a linear-filtered texture with sRGB decoding before filtering.
+// Texture images: decoded once to linear RGBA floats, sampled bilinearly the way a GPU samples a
+// linear-filtered texture with sRGB decoding before filtering. Every image lamina reads (material
+// textures, environment maps, glTF images) is decoded here, from bytes read by file_access.h,
+// after its header has been checked against the pixel budget.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 #include <vector>
+
+#include "graph/file_access.h"
 
 namespace lamina {
 
@@ -17,9 +25,41 @@ struct LinearImage {
 
 enum class Wrap { Repeat = 0, Clamp = 1, Mirror = 2 };
 
-// Reads any image OpenImageIO reads; grey images give r = g = b, missing alpha is 1. With `srgb`
-// the colour channels are decoded with the sRGB curve (alpha stays linear). Throws IoError.
-std::shared_ptr<const LinearImage> load_linear_image(const std::filesystem::path& path, bool srgb);
+// Bytes that are not an image lamina can decode, or one beyond the pixel budget; the message is
+// lamina's own words with the decoder's reason, never the decoder's output on the terminal.
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ImageHeader {
+  std::string format;  // "png", "jpeg", "openexr", ...
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+};
+
+// Reads the header of an encoded image without decoding any pixel. `name` (a file name) picks the
+// decoder only when the bytes do not say what they are. Throws ImageError.
+ImageHeader read_image_header(std::string_view bytes, const std::string& name);
+
+// Decodes the first image of `bytes` (PNG through libpng, every other format OpenImageIO reads):
+// grey gives r = g = b, missing alpha is 1, alpha stays straight (not multiplied into the colour),
+// integer formats map to [0, 1]. With `srgb` the colour channels are decoded with the sRGB curve.
+// Refuses images whose width x height exceeds `max_pixels` before decoding. Throws ImageError.
+std::shared_ptr<const LinearImage> decode_linear_image(std::string_view bytes, const std::string& name, bool srgb,
+                                                       std::uint64_t max_pixels);
+
+// A referenced image file read (file_access.h) and decoded under the policy's pixel budget.
+// Throws ReferenceError for a reference that cannot be read and ImageError for one that does not
+// decode.
+std::shared_ptr<const LinearImage> load_image_reference(const Reference& reference, bool srgb,
+                                                        const AssetPolicy& policy);
+
+// An image file named directly (on the command line, or by a program), read as an input file and
+// decoded. Throws IoError when it cannot be read, ImageError when it does not decode.
+std::shared_ptr<const LinearImage> load_image_file(const std::filesystem::path& path, bool srgb,
+                                                   std::uint64_t max_pixels = kDefaultMaxImagePixels);
 
 // Bilinear lookup with texel centres at (i + 0.5) / width, as OpenGL's GL_LINEAR.
 glm::vec4 sample_bilinear(const LinearImage& image, glm::vec2 uv, Wrap wrap);

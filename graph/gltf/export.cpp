@@ -12,6 +12,7 @@
 #include <set>
 
 #include "graph/compile.h"
+#include "graph/cpu/image.h"
 #include "graph/gltf/gltf_buffer.h"
 #include "graph/gltf/label_image.h"
 #include "graph/gltf/png_encode.h"
@@ -89,23 +90,17 @@ std::string mime_of(const std::vector<unsigned char>& bytes) {
   return "";
 }
 
-std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
-  std::string text = read_text_file(path);  // binary-safe; throws IoError
-  return std::vector<unsigned char>(text.begin(), text.end());
-}
-
-// Images glTF cannot hold (EXR, TIFF, HDR, ...) become 8-bit PNGs of the same channels (at most
-// four); values are clamped to [0, 1], with no change of transfer curve.
-std::vector<unsigned char> png_from_any_image(const std::filesystem::path& path) {
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) throw IoError(path.string() + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec spec = input->spec();
-  const int channels = std::min(spec.nchannels, 4);
-  std::vector<uint8_t> pixels(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
-                              static_cast<size_t>(channels));
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
-    throw IoError(path.string() + ": cannot read image: " + input->geterror());
-  return encode_png(spec.width, spec.height, channels, pixels);
+// Images glTF cannot hold (EXR, TIFF, HDR, ...) become 8-bit RGBA PNGs; values are clamped to
+// [0, 1] and rounded, with no change of transfer curve.
+std::vector<unsigned char> png_from_any_image(const std::string& bytes, const std::string& name,
+                                              std::uint64_t max_pixels) {
+  const auto image = decode_linear_image(bytes, name, false, max_pixels);
+  std::vector<uint8_t> pixels(image->texels.size() * 4);
+  for (size_t i = 0; i < image->texels.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      pixels[4 * i + static_cast<size_t>(c)] =
+          static_cast<uint8_t>(std::lround(std::clamp(image->texels[i][c], 0.0f, 1.0f) * 255.0f));
+  return encode_png(image->width, image->height, 4, pixels);
 }
 
 class Writer {
@@ -287,7 +282,7 @@ class Writer {
   const std::vector<glm::vec3>& label_positions(const SceneObject& object) {
     const std::string key = geometry_key(object);
     auto it = positions_.find(key);
-    if (it == positions_.end()) it = positions_.emplace(key, object_mesh(object).positions).first;
+    if (it == positions_.end()) it = positions_.emplace(key, object_mesh(object, scene_.policy).positions).first;
     return it->second;
   }
 
@@ -324,7 +319,7 @@ class Writer {
   Json geometry(const SceneObject& object) {
     const std::string key = geometry_key(object);
     if (auto it = attributes_.find(key); it != attributes_.end()) return it->second;
-    TriangleMesh mesh = object_mesh(object);
+    TriangleMesh mesh = object_mesh(object, scene_.policy);
     Json attributes;
     attributes["POSITION"] = buffer_.add_vec3(mesh.positions, true);
     attributes["NORMAL"] = buffer_.add_vec3(mesh.normals, false);
@@ -385,19 +380,18 @@ class Writer {
     single.materials.push_back(m);
     Json canonical = Json::parse(write_document(single))["materials"][0];
     Json textures = Json::object();
-    const std::filesystem::path dir = file.resolved.parent_path();
     for (const Node& node : m.nodes) {
       if (node.type != "texture/image") continue;
       const Value* f = node.find("file");
       if (!f || !std::holds_alternative<std::string>(*f)) continue;
-      std::filesystem::path path(std::get<std::string>(*f));
-      if (path.is_relative()) path = dir / path;
+      const Reference reference =
+          resolve_reference(file.resolved, std::get<std::string>(*f), ReferenceScope::AssetRoots, file.document.policy);
       int wrap = kRepeat;
       if (const Value* w = node.find("wrap"); w && std::holds_alternative<std::string>(*w)) {
         const auto& mode = std::get<std::string>(*w);
         wrap = mode == "clamp" ? kClampToEdge : mode == "mirror" ? kMirroredRepeat : kRepeat;
       }
-      textures[node.id] = Json{{"index", file_texture(path, wrap)}};
+      textures[node.id] = Json{{"index", file_texture(reference, file.document.policy, wrap)}};
     }
     return Json{{"format", kFormatVersion}, {"material", canonical}, {"textures", textures}};
   }
@@ -421,16 +415,22 @@ class Writer {
     return image(encode_png(width, height, channels, pixels), "image/png", name);
   }
 
-  int file_texture(const std::filesystem::path& path, int wrap) {
-    const std::string key = path.lexically_normal().string() + "|" + std::to_string(wrap);
+  // The file's bytes as they are when glTF can hold them (PNG, JPEG), else re-encoded as PNG; the
+  // file was decoded when the material was checked, and is decoded again here either way.
+  int file_texture(const Reference& reference, const AssetPolicy& policy, int wrap) {
+    const std::string key = reference.resolved.string() + "|" + std::to_string(wrap);
     if (auto it = file_textures_.find(key); it != file_textures_.end()) return it->second;
-    std::vector<unsigned char> bytes = read_bytes(path);
+    const std::string name = reference.path.filename().string();
+    const std::string text = read_reference(reference, kMaxBinaryFileBytes, policy);
+    std::vector<unsigned char> bytes(text.begin(), text.end());
     std::string mime = mime_of(bytes);
     if (mime.empty()) {
-      bytes = png_from_any_image(path);
+      bytes = png_from_any_image(text, name, policy.max_image_pixels);
       mime = "image/png";
+    } else {
+      decode_linear_image(text, name, false, policy.max_image_pixels);
     }
-    int source = image(bytes, mime, path.filename().string());
+    int source = image(bytes, mime, name);
     int texture = push("textures", Json{{"sampler", sampler(wrap)}, {"source", source}});
     file_textures_[key] = texture;
     return texture;

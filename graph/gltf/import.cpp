@@ -174,7 +174,7 @@ class Importer {
 
  private:
   bool load_model() {
-    const std::string text = read_text_file(path_);  // throws IoError: not a user mistake
+    const std::string text = read_input_file(path_, kMaxBinaryFileBytes);  // IoError: not a user mistake
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_encoded, nullptr);
     // tinygltf drops extension values that are not objects; the original text keeps them, so a
@@ -527,7 +527,9 @@ class Importer {
     scratch_.write(file, image->image);
     double green = 0.0, blue = 0.0;
     try {
-      auto decoded = load_linear_image(scratch_.path() / file, false);
+      auto decoded =
+          decode_linear_image(std::string_view(reinterpret_cast<const char*>(image->image.data()), image->image.size()),
+                              file, false, kDefaultMaxImagePixels);
       for (const auto& t : decoded->texels) {
         green += t.g;
         blue += t.b;
@@ -535,7 +537,7 @@ class Importer {
       const double count = static_cast<double>(decoded->texels.size());
       green /= count;
       blue /= count;
-    } catch (const IoError& e) {
+    } catch (const ImageError& e) {
       diagnostics_.warning(file_, pointer, std::string("cannot read the texture: ") + e.what(),
                            "the metallic and roughness factors are used alone");
       return;

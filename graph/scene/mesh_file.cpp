@@ -454,22 +454,39 @@ class MeshLoader {
 
 }  // namespace
 
-TriangleMesh load_mesh_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": no such file");
+namespace {
+
+TriangleMesh load_mesh_bytes(const std::string& bytes, const std::filesystem::path& path) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
-  std::string ext = path.extension().string();
-  bool binary = ext == ".glb" || ext == ".GLB";
-  bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
-                   : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+  const bool binary = bytes.compare(0, 4, "glTF") == 0;
+  const std::string base = path.parent_path().string();
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                 reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                 static_cast<unsigned>(bytes.size()), base)
+                   : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
+                                                static_cast<unsigned>(bytes.size()), base);
   if (!ok) {
     while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
     throw IoError(path.string() + ": cannot read glTF: " + (error.empty() ? "unknown error" : error));
   }
   return MeshLoader(model, path).load();
+}
+
+}  // namespace
+
+TriangleMesh load_mesh_file(const Reference& file, const AssetPolicy& policy) {
+  try {
+    return load_mesh_bytes(read_reference(file, kMaxBinaryFileBytes, policy), file.path);
+  } catch (const ReferenceError& e) {
+    throw IoError(e.what());
+  }
+}
+
+TriangleMesh load_mesh_file(const std::filesystem::path& path) {
+  return load_mesh_bytes(read_input_file(path, kMaxBinaryFileBytes), path);
 }
 
 }  // namespace lamina

@@ -27,6 +27,8 @@ inline constexpr size_t kMaxMeshPrimitives = size_t{1} << 16;  // primitive inst
 // node hierarchies that are not strict trees (cycles, nodes with two parents), transforms that
 // collapse a mesh, and files beyond the limits above. Nothing is allocated before it is checked
 // against the file's own sizes and these limits.
+TriangleMesh load_mesh_file(const Reference& file, const AssetPolicy& policy);
+// A mesh file named directly (on the command line, or by a program): read as an input file.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
 
 }  // namespace lamina

@@ -16,6 +16,7 @@ constexpr double kMargin = 0.5;   // around the outer spheres, in scene units
 Scene sample_sheet(const Document& materials, const std::filesystem::path& material_file, int columns) {
   Scene scene;
   scene.path = material_file.string();
+  scene.policy = materials.policy.with_default_root(material_file);
   scene.material_files.push_back(MaterialFileRef{material_file.string(), material_file, materials});
   size_t count = materials.materials.size();
   size_t per_row = static_cast<size_t>(std::max(1, columns));

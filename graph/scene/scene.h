@@ -44,7 +44,8 @@ struct Light {
   double outer_cone_deg = 45.0;         // spot
   std::optional<double> range;          // point, spot
   std::string file;                     // environment: an equirectangular image, as written
-  std::filesystem::path resolved_file;  // environment: the file resolved against the scene's directory
+  std::filesystem::path resolved_file;  // environment: the file against the scene's folder, lexically normal
+  Reference reference;                  // environment: the file as file_access.h follows it
 };
 
 // A triangle mesh with what shading needs: per-vertex position, normal, tangent (xyz and the
@@ -76,7 +77,8 @@ struct SceneObject {
   double major_radius = 1.0, minor_radius = 0.25;
   int segments = 64;                         // tessellation of curved primitives (around); rings are derived
   std::string mesh_file;                     // mesh: as written
-  std::filesystem::path resolved_mesh_file;  // mesh: resolved against the scene's directory
+  std::filesystem::path resolved_mesh_file;  // mesh: against the scene's folder, lexically normal
+  Reference mesh_reference;                  // mesh: the file as file_access.h follows it
   Transform transform;
   std::string material;  // a material name from one of the scene's material files
   std::string label;     // shown under the object by the glTF export; empty: none
@@ -84,12 +86,13 @@ struct SceneObject {
 
 struct MaterialFileRef {
   std::string path;                // as written, relative to the scene file
-  std::filesystem::path resolved;  // against the scene's directory
+  std::filesystem::path resolved;  // against the scene's folder, lexically normal
   Document document;               // loaded and checked
 };
 
 struct Scene {
-  std::string path;  // where it was read from
+  std::string path;    // where it was read from
+  AssetPolicy policy;  // how its files (and its material files' textures) are followed
   std::optional<std::string> schema;
   int format = kSceneFormatVersion;
   std::vector<MaterialFileRef> material_files;
@@ -104,10 +107,13 @@ struct Scene {
 // Reads and checks a scene: JSON, keys, types, finite and in-range numbers, transforms (no zero
 // scale, unit-length-able rotations), material files (each checked as `lamina validate` would;
 // their problems are reported under their own file), material names (unknown: "did you mean"),
-// mesh and environment files existing. Problems go to `diagnostics`.
-Scene read_scene(std::string_view text, const std::string& file, Diagnostics& diagnostics);
-// As read_scene; throws IoError when the scene file itself cannot be read.
-Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostics);
+// mesh files (loaded) and environment images (decoded), every file followed under `policy`
+// (file_access.h; its roots default to the scene's folder). Problems go to `diagnostics`.
+Scene read_scene(std::string_view text, const std::string& file, Diagnostics& diagnostics,
+                 const AssetPolicy& policy = {});
+// As read_scene; throws IoError when the scene file itself cannot be read (one beyond
+// kMaxJsonFileBytes is an error in `diagnostics`).
+Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostics, const AssetPolicy& policy = {});
 
 // Whether a JSON file is a scene (an object with "objects") rather than a material file.
 bool looks_like_scene(std::string_view text);
@@ -119,7 +125,7 @@ Scene sample_sheet(const Document& materials, const std::filesystem::path& mater
 // The mesh of an object in its own space (the transform is not applied): a built-in primitive
 // with UVs and tangents, or every triangle primitive of a .gltf/.glb file (node transforms of its
 // default scene applied, normals and tangents generated where the file has none). Throws IoError
-// when a mesh file cannot be read or holds no triangles.
-TriangleMesh object_mesh(const SceneObject& object);
+// when a mesh file cannot be read, lamina::Error for one lamina cannot use.
+TriangleMesh object_mesh(const SceneObject& object, const AssetPolicy& policy);
 
 }  // namespace lamina

@@ -7,6 +7,8 @@
 #include "graph/load.h"
 #include "graph/number_text.h"
 #include "graph/scene/scene.h"
+
+#include "graph/cpu/image.h"
 #include "graph/scene/scene_fields.h"
 
 namespace lamina {
@@ -52,12 +54,13 @@ bool has_extension(const std::filesystem::path& path, std::initializer_list<cons
 
 class SceneReader {
  public:
-  SceneReader(const std::string& file, Diagnostics& diagnostics)
-      : file_(file), dir_(std::filesystem::path(file).parent_path()), diag_(diagnostics) {}
+  SceneReader(const std::string& file, Diagnostics& diagnostics, const AssetPolicy& policy)
+      : file_(file), dir_(std::filesystem::path(file).parent_path()), diag_(diagnostics), policy_(policy) {}
 
   Scene read(std::string_view text) {
     Scene scene;
     scene.path = file_;
+    scene.policy = policy_;
     auto parsed =
         parse_json(text, file_, diag_, "a scene file is a JSON object with \"format\", \"materials\" and \"objects\"");
     if (!parsed) return scene;
@@ -99,9 +102,16 @@ class SceneReader {
 
   std::filesystem::path resolve(const std::string& written) const { return (dir_ / written).lexically_normal(); }
 
-  static bool is_file(const std::filesystem::path& path) {
-    std::error_code ec;
-    return std::filesystem::is_regular_file(path, ec);
+  // `written` followed under the policy; a refused reference is an error at `pointer` that starts
+  // with `what` ("material file", ...).
+  std::optional<Reference> follow(const std::string& written, const std::string& pointer, const std::string& what) {
+    try {
+      return resolve_reference(file_, written, ReferenceScope::AssetRoots, policy_);
+    } catch (const ReferenceError& e) {
+      error(pointer, what + " " + e.what(),
+            e.hint().empty() ? "paths are relative to the scene file's directory" : e.hint());
+      return std::nullopt;
+    }
   }
 
   void read_format(const Json& root) {
@@ -300,16 +310,13 @@ class SceneReader {
               "remove one of them");
         continue;
       }
-      if (!is_file(ref.resolved)) {
-        error(pointer, "material file not found: " + ref.resolved.string(),
-              "paths are relative to the scene file's directory");
-        continue;
-      }
+      const auto reference = follow(ref.path, pointer, "material file");
+      if (!reference) continue;
       CheckedFile checked;
       try {
-        checked = check_file(ref.resolved);
-      } catch (const IoError& e) {
-        error(pointer, std::string("cannot read the material file: ") + e.what());
+        checked = check_text(read_reference(*reference, kMaxJsonFileBytes, policy_), ref.resolved.string(), policy_);
+      } catch (const ReferenceError& e) {
+        error(pointer, std::string("material file ") + e.what(), e.hint());
         continue;
       }
       diag_.append(checked.diagnostics);
@@ -402,9 +409,17 @@ class SceneReader {
     if (t == LightType::Environment) {
       l.file = v.text("file");
       l.resolved_file = resolve(l.file);
-      if (!is_file(l.resolved_file)) {
-        error(pointer + "/file", "environment image not found: " + l.resolved_file.string(),
-              "paths are relative to the scene file's directory");
+      const auto reference = follow(l.file, pointer + "/file", "environment image");
+      if (!reference) return std::nullopt;
+      l.reference = *reference;
+      // Decoded now, as rendering will: what validates also loads.
+      try {
+        load_image_reference(l.reference, false, policy_);
+      } catch (const ReferenceError& e) {
+        error(pointer + "/file", std::string("environment image ") + e.what(), e.hint());
+        return std::nullopt;
+      } catch (const ImageError& e) {
+        error(pointer + "/file", "environment image '" + l.file + "' is not a readable image: " + e.what());
         return std::nullopt;
       }
     }
@@ -508,11 +523,9 @@ class SceneReader {
       error(pointer, "expected a .gltf or .glb mesh file, found \"" + written + "\"");
       return false;
     }
-    if (!is_file(o.resolved_mesh_file)) {
-      error(pointer, "mesh file not found: " + o.resolved_mesh_file.string(),
-            "paths are relative to the scene file's directory");
-      return false;
-    }
+    const auto reference = follow(written, pointer, "mesh file");
+    if (!reference) return false;
+    o.mesh_reference = *reference;
     // Loaded now so that a mesh file's problems are reported here, not when exporting; once per
     // file however many objects use it.
     auto [known, first_use] = mesh_files_.emplace(o.resolved_mesh_file, MeshFileUse{true, pointer});
@@ -523,7 +536,7 @@ class SceneReader {
       return known->second.ok;
     }
     try {
-      object_mesh(o);
+      object_mesh(o, policy_);
     } catch (const IoError& e) {
       known->second.ok = false;
       error(pointer, e.what());
@@ -561,6 +574,7 @@ class SceneReader {
   const std::string& file_;
   std::filesystem::path dir_;
   Diagnostics& diag_;
+  const AssetPolicy& policy_;
   bool materials_incomplete_ = false;
   struct MeshFileUse {
     bool ok = true;             // whether it loaded
@@ -571,12 +585,23 @@ class SceneReader {
 
 }  // namespace
 
-Scene read_scene(std::string_view text, const std::string& file, Diagnostics& diagnostics) {
-  return SceneReader(file, diagnostics).read(text);
+Scene read_scene(std::string_view text, const std::string& file, Diagnostics& diagnostics, const AssetPolicy& policy) {
+  const AssetPolicy effective = policy.with_default_root(file);
+  return SceneReader(file, diagnostics, effective).read(text);
 }
 
-Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostics) {
-  return read_scene(read_text_file(path), path.string(), diagnostics);
+Scene read_scene_file(const std::filesystem::path& path, Diagnostics& diagnostics, const AssetPolicy& policy) {
+  std::string text;
+  try {
+    text = read_input_file(path, kMaxJsonFileBytes);
+  } catch (const Error& e) {  // too large: a mistake of the file
+    for (const auto& d : e.diagnostics()) diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    Scene scene;
+    scene.path = path.string();
+    scene.policy = policy.with_default_root(path);
+    return scene;
+  }
+  return read_scene(text, path.string(), diagnostics, policy);
 }
 
 }  // namespace lamina

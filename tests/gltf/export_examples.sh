@@ -6,8 +6,8 @@ set -euo pipefail
 lamina=$1 source=$2 out=$3
 rm -rf "$out"
 mkdir -p "$out"
-"$lamina" gltf "$source/examples/scenes/showcase.json" -o "$out/showcase.glb" >/dev/null
-"$lamina" gltf "$source/examples/scenes/showcase.json" -o "$out/showcase.gltf" >/dev/null
+"$lamina" gltf "$source/examples/showcase.json" -o "$out/showcase.glb" >/dev/null
+"$lamina" gltf "$source/examples/showcase.json" -o "$out/showcase.gltf" >/dev/null
 "$lamina" gltf "$source/examples/materials/car_paint.json" -o "$out/my scene#1%+.gltf" >/dev/null
 for material in "$source"/examples/materials/*.json; do
   "$lamina" gltf "$material" -o "$out/$(basename "$material" .json).glb" >/dev/null

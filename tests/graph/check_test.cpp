@@ -129,7 +129,8 @@ TEST_CASE("a missing texture file names the path searched, and an existing one p
   CHECK(missing.diagnostics.errors()[0].pointer == "/materials/0/nodes/1/file");
   CHECK(missing.diagnostics.errors()[0].message.find((dir.path() / "missing.png").string()) != std::string::npos);
 
-  std::filesystem::copy_file(test::source_dir() / "examples/textures/patina_mask.png", dir.path() / "mask.png");
+  std::filesystem::copy_file(test::source_dir() / "examples/materials/textures/patina_mask.png",
+                             dir.path() / "mask.png");
   write("mask.png");
   CHECK(check_file(material).ok());
 }

@@ -5,7 +5,7 @@
 //   - every case of tests/data/bad/cases.json must be accepted or rejected as its "schema" field
 //     says ("reject": the schema sees the mistake; "accept": only `lamina validate` can).
 //     A file that JSON.parse refuses counts as rejected.
-//   - the same for scenes: schema/scene.schema.json compiles, examples/scenes/*.json are valid,
+//   - the same for scenes: schema/scene.schema.json compiles, the scenes examples/*.json are valid,
 //     tests/data/bad_scenes/cases.json says which broken scenes the schema must reject.
 // Usage: node tests/schema/ajv_check.mjs <repo_root> [--schema FILE]
 // (--schema checks another material schema file instead of <repo_root>/schema/material.schema.json.)
@@ -191,8 +191,9 @@ function checkWith(compiled, file) {
 
 const sceneSchema = compileSchema(path.join(root, "schema", "scene.schema.json"));
 if (sceneSchema) {
-  const scenesDir = path.join(root, "examples", "scenes");
-  const scenes = fs.existsSync(scenesDir) ? fs.readdirSync(scenesDir).filter((f) => f.endsWith(".json")).sort() : [];
+  // Scenes sit at the top of examples/, so that the material files they name lie inside their folder.
+  const scenesDir = path.join(root, "examples");
+  const scenes = fs.readdirSync(scenesDir).filter((f) => f.endsWith(".json")).sort();
   if (scenes.length === 0) fail(rel(scenesDir), "no example scene files found");
   for (const f of scenes) {
     const file = path.join(scenesDir, f);

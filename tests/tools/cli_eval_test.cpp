@@ -145,7 +145,7 @@ TEST_CASE("lamina plot writes the same PNG of the requested size every time and 
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.empty());
-  auto image = load_linear_image(first, false);
+  auto image = load_image_file(first, false);
   CHECK(image->width == 800);
   CHECK(image->height == 400);
   REQUIRE(test::run_cli(args + quoted(second)).exit_code == 0);
@@ -244,7 +244,7 @@ TEST_CASE("lamina eval, albedo and plot work on every example material") {
     CHECK(plot.out.empty());
     REQUIRE(std::filesystem::is_regular_file(png));
     CHECK(test::read_file(png).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
-    auto image = load_linear_image(png, false);
+    auto image = load_image_file(png, false);
     CHECK(image->width == 800);
     CHECK(image->height == 400);
   }
@@ -262,7 +262,7 @@ TEST_CASE("lamina plot takes the slices' uv and the sky's radiance, and rejects 
           0);
   REQUIRE(test::run_cli("plot " + checker + " --size 800 --uv 0.05,0.05 -o " + quoted(sky)).exit_code == 0);
   CHECK(test::read_file(red) != test::read_file(gold));
-  auto lit = load_linear_image(sky, false), unlit = load_linear_image(red, false);
+  auto lit = load_image_file(sky, false), unlit = load_image_file(red, false);
   double sum_lit = 0.0, sum_unlit = 0.0;
   for (size_t i = 0; i < lit->texels.size(); ++i) {
     sum_lit += double(lit->texels[i].x + lit->texels[i].y + lit->texels[i].z);

@@ -27,7 +27,7 @@ TEST_CASE("lamina import writes a valid material file with the textures next to 
   CHECK(r.out.find("out/imported.json: 2 materials, 1 texture extracted, 0 warnings") != std::string::npos);
   CHECK(test::listing(dir.path() / "out") == std::vector<std::string>{"imported.json", "patina_mask.png"});
   CHECK(test::read_file(dir.path() / "out/patina_mask.png") ==
-        test::read_file(test::source_dir() / "examples/textures/patina_mask.png"));
+        test::read_file(test::source_dir() / "examples/materials/textures/patina_mask.png"));
   auto valid = test::run_cli("validate out/imported.json", dir.path());
   INFO(valid.err);
   CHECK(valid.exit_code == 0);

@@ -93,11 +93,11 @@ TEST_CASE("lamina schema writes the generated schema and reference") {
 }
 
 TEST_CASE("lamina validate checks a scene and its material files and prints a one-line summary") {
-  auto r = test::run_cli("validate examples/scenes/showcase.json", test::source_dir());
+  auto r = test::run_cli("validate examples/showcase.json", test::source_dir());
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("examples/scenes/showcase.json: ok (scene: 19 objects, 18 materials, 2 lights, 1 camera)") !=
+  CHECK(r.out.find("examples/showcase.json: ok (scene: 19 objects, 18 materials, 2 lights, 1 camera)") !=
         std::string::npos);
   CHECK(r.out.find("1 of 1 file valid, 18 materials, 0 warnings") != std::string::npos);
 }
@@ -110,7 +110,8 @@ TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the ma
   CHECK(scene.out.find("0 of 1 file valid") != std::string::npos);
   auto material = test::run_cli("validate tests/data/bad_scenes/broken_material_file.json", test::source_dir());
   CHECK(material.exit_code == 2);
-  CHECK(material.err.find("tests/data/bad/ior_below_one.json:/materials/0/nodes/1/ior: ") != std::string::npos);
+  CHECK(material.err.find("tests/data/bad_scenes/materials/ior_below_one.json:/materials/0/nodes/1/ior: ") !=
+        std::string::npos);
 }
 
 TEST_CASE("every command has --help, the tool has --version, and a bad command line exits 2") {

@@ -220,7 +220,7 @@ TEST_CASE("glTF export: textured materials get baked fallback textures, uniform 
 
 TEST_CASE("glTF export: the showcase has a node per object, camera, light and label, in that order") {
   Diagnostics d;
-  Scene scene = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", d);
+  Scene scene = read_scene_file(test::source_dir() / "examples/showcase.json", d);
   REQUIRE(d.ok());
   gltf::Export out = gltf::export_scene(scene, "showcase.glb", quick());
   Json j = glb_json(out.files[0].bytes);
@@ -245,10 +245,11 @@ TEST_CASE("glTF export: the showcase has a node per object, camera, light and la
 
 namespace {
 
-// A scene written in examples/scenes (its material paths resolve like the showcase's).
+// A scene written in a folder examples/scenes, with the repository as its asset root.
 Scene scene_of(const std::string& text) {
   Diagnostics d;
-  Scene scene = read_scene(text, (test::source_dir() / "examples/scenes/inline.json").string(), d);
+  Scene scene =
+      read_scene(text, (test::source_dir() / "examples/scenes/inline.json").string(), d, test::repository_policy());
   for (const auto& e : d.errors()) INFO(format(e));
   REQUIRE(d.ok());
   return scene;
@@ -330,7 +331,7 @@ TEST_CASE("glTF export: an environment light is left out with a note, in the lib
     s.replace(s.find("TEXTURE"), 7, texture);
     return s;
   };
-  Scene scene = scene_of(with_paths("../materials/brass.json", "../textures/patina_mask.png"));
+  Scene scene = scene_of(with_paths("../materials/brass.json", "../materials/textures/patina_mask.png"));
   gltf::Export out = gltf::export_scene(scene, "env.glb", quick());
   Json j = glb_json(out.files[0].bytes);
   REQUIRE(out.notes.size() == 1);
@@ -341,9 +342,10 @@ TEST_CASE("glTF export: an environment light is left out with a note, in the lib
   for (const auto& n : j["nodes"]) CHECK(n["name"] != "sky");
 
   test::TempDir dir;
-  std::ofstream(dir.path() / "env.json") << with_paths(
-      (test::source_dir() / "examples/materials/brass.json").string(),
-      (test::source_dir() / "examples/textures/patina_mask.png").string());
+  std::filesystem::copy_file(test::source_dir() / "examples/materials/brass.json", dir.path() / "brass.json");
+  std::filesystem::copy_file(test::source_dir() / "examples/materials/textures/patina_mask.png",
+                             dir.path() / "sky.png");
+  std::ofstream(dir.path() / "env.json") << with_paths("brass.json", "sky.png");
   auto r = test::run_cli("gltf env.json --bake-size 8 -o env.glb", dir.path());
   INFO(r.err);
   CHECK(r.exit_code == 0);

@@ -218,7 +218,7 @@ TEST_CASE("import: LAMINA_materials_layered gives back the exact graph of the ex
     if (p.name == "file") p.value = std::string("patina_mask.png");
   CHECK(write_document(imported.result.document) == write_document(expected));
   REQUIRE(imported.result.textures.size() == 1);
-  const std::string mask = test::read_file(test::source_dir() / "examples/textures/patina_mask.png");
+  const std::string mask = test::read_file(test::source_dir() / "examples/materials/textures/patina_mask.png");
   CHECK(imported.result.textures[0].file_name == "patina_mask.png");
   CHECK(std::string(imported.result.textures[0].bytes.begin(), imported.result.textures[0].bytes.end()) == mask);
 }
@@ -348,7 +348,8 @@ TEST_CASE("import: a LAMINA_materials_layered material takes its name from the g
 
 TEST_CASE("import: an image's percent-encoded URI is decoded, for reading it and for the extracted file's name") {
   test::TempDir dir;
-  std::filesystem::copy_file(test::source_dir() / "examples/textures/patina_mask.png", dir.path() / "my mask#1.png");
+  std::filesystem::copy_file(test::source_dir() / "examples/materials/textures/patina_mask.png",
+                             dir.path() / "my mask#1.png");
   auto j = nlohmann::json::parse(test::read_file(data("base_color_texture.gltf")));
   j["images"][0] = {{"uri", "my%20mask%231.png"}};
   std::ofstream(dir.path() / "encoded.gltf") << j.dump();

@@ -99,7 +99,7 @@ TEST_CASE("round trip: every example material -> .glb and .gltf -> lamina gives 
 TEST_CASE("round trip: the showcase scene -> .glb -> lamina gives every material's graph back") {
   test::TempDir dir;
   Diagnostics diagnostics;
-  const Scene scene = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", diagnostics);
+  const Scene scene = read_scene_file(test::source_dir() / "examples/showcase.json", diagnostics);
   REQUIRE(diagnostics.ok());
   round_trip(scene, dir.path() / "showcase.glb");
 }

@@ -9,9 +9,9 @@ using namespace lamina;
 
 namespace {
 
-// A scene "written" in examples/scenes, so that its paths resolve like the showcase's.
+// A scene "written" in a folder examples/scenes, with the repository as its asset root.
 Scene read_inline(const std::string& text, Diagnostics& d) {
-  return read_scene(text, (test::source_dir() / "examples/scenes/inline.json").string(), d);
+  return read_scene(text, (test::source_dir() / "examples/scenes/inline.json").string(), d, test::repository_policy());
 }
 
 std::string all_problems(const Diagnostics& d) {
@@ -126,7 +126,7 @@ TEST_CASE("mistakes name what was expected: the closest key, shape or material, 
   Diagnostics missing;
   read_scene_file(dir / "missing_material_file.json", missing);
   REQUIRE(missing.errors().size() == 1);  // no knock-on "unknown material" errors
-  CHECK(missing.errors()[0].message.find((dir / "../materials/no_such_file.json").lexically_normal().string()) !=
+  CHECK(missing.errors()[0].message.find((dir / "materials/no_such_file.json").lexically_normal().string()) !=
         std::string::npos);
 
   Diagnostics malformed;
@@ -137,7 +137,7 @@ TEST_CASE("mistakes name what was expected: the closest key, shape or material, 
 
 TEST_CASE("the showcase reads with no error and no warning, one sphere per example material") {
   Diagnostics d;
-  Scene s = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", d);
+  Scene s = read_scene_file(test::source_dir() / "examples/showcase.json", d);
   INFO(all_problems(d));
   CHECK(d.ok());
   CHECK(d.warnings().empty());
@@ -190,7 +190,7 @@ TEST_CASE("an object's optional label is read as written, and the showcase label
   CHECK(too_long.errors()[0].pointer == "/objects/0/label");
 
   Diagnostics showcase;
-  Scene s2 = read_scene_file(test::source_dir() / "examples/scenes/showcase.json", showcase);
+  Scene s2 = read_scene_file(test::source_dir() / "examples/showcase.json", showcase);
   size_t labelled = 0;
   for (const auto& o : s2.objects)
     if (o.shape == ShapeType::Sphere) {

@@ -1,0 +1,35 @@
+// Every limit lamina puts on its input, in one place: what `lamina validate` checks, what every
+// command agrees on, and what the README's "Limits and safety" section lists. Each bounds the
+// memory or time a file can make lamina spend, or a back end's fixed capacity.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace lamina {
+
+// JSON documents (material and scene files, glTF JSON and the JSON chunk of a .glb): arrays and
+// objects nest at most this deep. Checked by a linear scan before any tree is built, so that no
+// recursive code (building, copying, freeing a document) can exhaust the stack. A material needs
+// 6 levels, a glTF file about 10.
+inline constexpr int kMaxJsonDepth = 128;
+
+// Material and scene files, and the JSON of a glTF file.
+inline constexpr std::uint64_t kMaxJsonFileBytes = std::uint64_t{64} << 20;  // 64 MiB
+// A .glb, a glTF buffer (.bin) and an image file.
+inline constexpr std::uint64_t kMaxBinaryFileBytes = std::uint64_t{1} << 30;  // 1 GiB
+
+// Decoded images: width x height at most this, by default (8192 x 8192). Checked on the file's
+// header before any pixel is decoded; `--max-image-pixels` raises or lowers it.
+inline constexpr std::uint64_t kDefaultMaxImagePixels = std::uint64_t{1} << 26;
+// Each side of an image, whatever the budget (OpenImageIO's sizes are ints).
+inline constexpr std::uint64_t kMaxImageSide = std::uint64_t{1} << 20;
+
+// A material's stack as the back ends hold it (the CPU evaluator's fixed arrays; GLSL unrolls the
+// same): stack nodes (layers, mixes, interfaces' layers and substrates reached from the surface),
+// lobes (one per interface and substrate, per path through the mixes) and texture registers.
+inline constexpr int kMaxStackNodes = 64;
+inline constexpr int kMaxLobes = 64;
+inline constexpr int kMaxSlots = 256;
+
+}  // namespace lamina
