@@ -211,6 +211,9 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
     ref.in_memory = true;
     return ref;
   }
+  if (policy.overlay_only)
+    throw ReferenceError(quoted + " not found (looked for " + ref.path.string() + ")",
+                         "paths are relative to the folder of the file that names them");
   std::error_code ec;
   ref.resolved = fs::canonical(ref.path, ec);
   if (ec == std::errc::no_such_file_or_directory)

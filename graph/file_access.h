@@ -58,6 +58,7 @@ struct AssetPolicy {
   std::vector<std::filesystem::path> roots;
   std::uint64_t max_image_pixels = kDefaultMaxImagePixels;
   std::shared_ptr<const FileOverlay> overlay;
+  bool overlay_only = false;  // references resolve in the overlay alone: the file system is not asked
 
   // This policy, with the folder of `top_level_file` as its root when it has none.
   AssetPolicy with_default_root(const std::filesystem::path& top_level_file) const;
