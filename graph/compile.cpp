@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "graph/cpu/image.h"
 #include "graph/json_write.h"
@@ -51,12 +52,15 @@ class Compiler {
   }
 
   const Output& linked_output(const Link& link) const {
-    for (size_t j = 0; j < g_.size(); ++j)
-      if (g_.node(j).id == link.node) {
-        const OutputDecl* out = g_.decl(j).find_output(link.output);
-        return outputs_.at({j, out->name});
-      }
+    if (auto j = index_of(link.node)) return outputs_.at({*j, g_.decl(*j).find_output(link.output)->name});
     throw std::logic_error("compile: dangling link " + to_string(link));
+  }
+
+  std::optional<size_t> index_of(const std::string& id) const {
+    if (ids_.empty())
+      for (size_t j = 0; j < g_.size(); ++j) ids_.emplace(g_.node(j).id, j);
+    auto it = ids_.find(id);
+    return it == ids_.end() ? std::nullopt : std::optional<size_t>(it->second);
   }
 
   ScalarRef scalar(size_t i, const char* name) const {
@@ -218,6 +222,7 @@ class Compiler {
   int slots_ = 0;
   std::map<std::pair<size_t, std::string>, Output> outputs_;
   std::map<size_t, int> stack_index_;
+  mutable std::map<std::string, size_t> ids_;  // node id -> index, built on first use
 };
 
 }  // namespace

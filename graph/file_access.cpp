@@ -137,12 +137,11 @@ std::string read_input_file(const fs::path& path, std::uint64_t max_bytes) {
   if (S_ISDIR(st.st_mode)) throw IoError(path.string() + ": cannot read: " + system_reason(EISDIR));
   const bool regular = S_ISREG(st.st_mode);
   auto too_large = [&] {
-    throw Error({Diagnostic{Severity::Error, path.string(), "",
-                            "the file is " +
-                                (regular ? byte_size_text(static_cast<std::uint64_t>(st.st_size)) + ", "
-                                         : std::string("longer than that: ")) +
-                                too_large_message(max_bytes),
-                            "split it into several files"}});
+    throw Error({Diagnostic{
+        Severity::Error, path.string(), "",
+        "the file is " + (regular ? std::to_string(st.st_size) + " bytes, " : std::string("longer than that: ")) +
+            too_large_message(max_bytes),
+        "split it into several files"}});
   };
   if (regular && static_cast<std::uint64_t>(st.st_size) > max_bytes) too_large();
   std::string text;
@@ -237,7 +236,7 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
 std::string read_reference(const Reference& reference, std::uint64_t max_bytes, const AssetPolicy& policy) {
   const std::string quoted = "'" + reference.written + "'";
   auto too_large = [&](std::uint64_t size) {
-    return ReferenceError(quoted + " is " + byte_size_text(size) + ", " + too_large_message(max_bytes), "");
+    return ReferenceError(quoted + " is " + std::to_string(size) + " bytes, " + too_large_message(max_bytes), "");
   };
   if (reference.in_memory) {
     const std::string& bytes = policy.overlay->at(reference.resolved);

@@ -23,14 +23,17 @@ std::vector<std::string> node_ids(const Material& m) {
   return ids;
 }
 
-// Depth-first search that reports each cycle once, as "a -> b -> a".
+// Depth-first search that reports each cycle once, as "a -> b -> a". Iterative, with an explicit
+// stack, so that a chain of any length is walked without exhausting the call stack, and linear:
+// a node's position on the path is kept, so closing a cycle does not search the path.
 class CycleFinder {
  public:
   CycleFinder(const Material& m, const std::vector<std::vector<std::pair<size_t, std::string>>>& inputs)
-      : m_(m), inputs_(inputs), state_(m.nodes.size(), 0) {}
+      : m_(m), inputs_(inputs), state_(m.nodes.size(), 0), position_(m.nodes.size(), 0) {}
 
   struct Cycle {
-    std::vector<size_t> path;  // from the first node back to it
+    std::vector<size_t> path;  // from the first node back to it (long cycles shortened, see below)
+    size_t length = 0;         // nodes on the cycle
     size_t reader;             // the node whose link closes the cycle
     std::string param;         // that link's parameter
   };
@@ -41,29 +44,58 @@ class CycleFinder {
     return cycles_;
   }
 
+  // A cycle prints at most this many nodes: its first ones, then its last one; a message stays
+  // short however long the cycle.
+  static constexpr size_t kShownNodes = 8;
+
  private:
-  void visit(size_t i, std::vector<size_t>& order) {
-    state_[i] = 1;
-    stack_.push_back(i);
-    for (const auto& [from, param] : inputs_[i]) {
+  struct Frame {
+    size_t node;
+    size_t next_input = 0;
+  };
+
+  void visit(size_t root, std::vector<size_t>& order) {
+    std::vector<Frame> frames{{root}};
+    enter(root);
+    while (!frames.empty()) {
+      Frame& f = frames.back();
+      const auto& inputs = inputs_[f.node];
+      if (f.next_input == inputs.size()) {
+        path_.pop_back();
+        state_[f.node] = 2;
+        order.push_back(f.node);  // post-order: inputs first
+        frames.pop_back();
+        continue;
+      }
+      const auto& [from, param] = inputs[f.next_input++];
       if (state_[from] == 1) {
-        auto start = std::find(stack_.begin(), stack_.end(), from);
-        Cycle c{{start, stack_.end()}, i, param};
+        Cycle c;
+        const size_t start = position_[from];
+        c.length = path_.size() - start;
+        for (size_t k = start; k < path_.size() && c.path.size() < kShownNodes; ++k) c.path.push_back(path_[k]);
+        if (c.length > kShownNodes) c.path.push_back(path_.back());
         c.path.push_back(from);
+        c.reader = f.node;
+        c.param = param;
         cycles_.push_back(std::move(c));
       } else if (state_[from] == 0) {
-        visit(from, order);
+        enter(from);
+        frames.push_back({from});
       }
     }
-    stack_.pop_back();
-    state_[i] = 2;
-    order.push_back(i);  // post-order: inputs first
+  }
+
+  void enter(size_t node) {
+    state_[node] = 1;
+    position_[node] = path_.size();
+    path_.push_back(node);
   }
 
   const Material& m_;
   const std::vector<std::vector<std::pair<size_t, std::string>>>& inputs_;
-  std::vector<int> state_;  // 0 new, 1 on the stack, 2 done
-  std::vector<size_t> stack_;
+  std::vector<int> state_;        // 0 new, 1 on the path, 2 done
+  std::vector<size_t> position_;  // where a node on the path is in path_
+  std::vector<size_t> path_;
   std::vector<Cycle> cycles_;
 };
 
@@ -149,11 +181,19 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
   CycleFinder finder(m, inputs);
   for (const auto& cycle : finder.find(g.order_)) {
     std::string text;
-    for (size_t k = 0; k < cycle.path.size(); ++k) text += (k ? " -> " : "") + m.nodes[cycle.path[k]].id;
+    for (size_t k = 0; k < cycle.path.size(); ++k) {
+      // A shortened cycle: its first nodes, "...", its last node, and the first again.
+      if (cycle.length > CycleFinder::kShownNodes && k + 2 == cycle.path.size())
+        text += " -> ... (" + std::to_string(cycle.length - CycleFinder::kShownNodes - 1) + " more)";
+      text += (k ? " -> " : "") + m.nodes[cycle.path[k]].id;
+    }
     error(material_pointer + "/nodes/" + std::to_string(cycle.reader) + "/" + cycle.param,
           "cycle: " + text + " (a node cannot depend on itself)", "links must form a DAG: break one of them");
   }
   if (!ok) return std::nullopt;
+
+  g.incoming_.resize(m.nodes.size());
+  for (size_t e = 0; e < g.edges_.size(); ++e) g.incoming_[g.edges_[e].to].push_back(e);
 
   g.used_.assign(m.nodes.size(), false);
   std::vector<size_t> todo{g.surface_};
@@ -168,8 +208,8 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
 }
 
 std::optional<size_t> Graph::linked(size_t i, std::string_view param) const {
-  for (const auto& e : edges_)
-    if (e.to == i && e.input->name == param) return e.from;
+  for (size_t e : incoming_[i])
+    if (edges_[e].input->name == param) return edges_[e].from;
   return std::nullopt;
 }
 

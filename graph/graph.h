@@ -50,6 +50,7 @@ class Graph {
   Material material_;
   std::vector<const NodeDecl*> decls_;
   std::vector<Edge> edges_;
+  std::vector<std::vector<size_t>> incoming_;  // per node: its edges' indices, so linked() is local
   std::vector<size_t> order_;
   std::vector<bool> used_;
   size_t surface_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <unordered_map>
 
 #include "graph/limits.h"
 
@@ -9,38 +10,62 @@ namespace lamina {
 
 namespace {
 
-// Follows the parser through the document so that a syntax error and a duplicate key can be
-// reported with the JSON pointer of where they happen (nlohmann only gives a byte offset).
-class PathTracker {
+// Builds the document from the parser's events while following where it is, so that a syntax
+// error and a duplicate key are reported with their JSON pointer (nlohmann only gives a byte
+// offset). Linear in the text: members are appended without nlohmann's search of the object (an
+// ordered object searches linearly), each object's keys are indexed here, and nothing scans the
+// siblings of a finished value (nlohmann's callback parser does, which is quadratic).
+class DocumentBuilder {
  public:
-  explicit PathTracker(std::vector<std::string>& duplicates) : duplicates_(duplicates) {}
-
-  bool on_event(int depth, Json::parse_event_t event, const Json& parsed) {
-    (void)depth;
-    switch (event) {
-      case Json::parse_event_t::object_start: stack_.push_back(Frame{false, 0, {}, false, {}}); break;
-      case Json::parse_event_t::array_start: stack_.push_back(Frame{true, 0, {}, false, {}}); break;
-      case Json::parse_event_t::key: {
-        auto& top = stack_.back();
-        top.key = parsed.get<std::string>();
-        top.has_key = true;
-        if (!top.keys.insert(top.key).second) duplicates_.push_back(pointer());
-        break;
-      }
-      case Json::parse_event_t::object_end:
-      case Json::parse_event_t::array_end:
-        stack_.pop_back();
-        finish_value();
-        break;
-      case Json::parse_event_t::value: finish_value(); break;
-    }
+  // nlohmann's SAX interface.
+  bool null() { return value(Json(nullptr)); }
+  bool boolean(bool v) { return value(Json(v)); }
+  bool number_integer(Json::number_integer_t v) { return value(Json(v)); }
+  bool number_unsigned(Json::number_unsigned_t v) { return value(Json(v)); }
+  bool number_float(Json::number_float_t v, const std::string&) { return value(Json(v)); }
+  bool string(std::string& v) { return value(Json(std::move(v))); }
+  bool binary(Json::binary_t&) { return false; }  // not produced by the JSON parser
+  bool start_object(size_t) {
+    Json* object = place(Json::object());
+    frames_.push_back(Frame{object, false, 0, {}, false, {}});
     return true;
+  }
+  bool key(std::string& key) {
+    Frame& top = frames_.back();
+    top.key = key;
+    top.has_key = true;
+    auto& members = top.value->get_ref<Json::object_t&>();
+    auto [at, inserted] = top.index_of.emplace(key, members.size());
+    if (inserted) {
+      members.emplace_back(key, nullptr);
+    } else {
+      duplicates_.push_back(pointer());  // JSON keeps one value: the later one replaces the first
+    }
+    member_ = &(members.begin() + static_cast<std::ptrdiff_t>(at->second))->second;
+    return true;
+  }
+  bool end_object() {
+    frames_.pop_back();
+    finish_value();
+    return true;
+  }
+  bool start_array(size_t) {
+    Json* array = place(Json::array());
+    frames_.push_back(Frame{array, true, 0, {}, false, {}});
+    return true;
+  }
+  bool end_array() { return end_object(); }
+  bool parse_error(size_t position, const std::string&, const nlohmann::detail::exception& e) {
+    error_position_ = position;
+    error_id_ = e.id;
+    error_text_ = e.what();
+    return false;
   }
 
   // Built in one pass: linear in the pointer's length, however deep.
   std::string pointer() const {
     std::string out;
-    for (const auto& f : stack_) {
+    for (const auto& f : frames_) {
       if (f.array)
         append_pointer_token(out, std::to_string(f.index));
       else if (f.has_key)
@@ -49,19 +74,49 @@ class PathTracker {
     return out;
   }
 
+  Json root;
+  std::vector<std::string> duplicates_;
+  size_t error_position_ = 0;
+  int error_id_ = 0;
+  std::string error_text_;
+
  private:
   struct Frame {
+    Json* value;  // the array or object being filled
     bool array;
-    size_t index = 0;
-    std::string key;
+    size_t index = 0;  // arrays: the element being read
+    std::string key;   // objects: the member being read
     bool has_key = false;
-    std::set<std::string> keys;
+    std::unordered_map<std::string, size_t> index_of;  // objects: where each key's member is
   };
-  void finish_value() {
-    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+
+  // Where the next value goes: the root, the end of the current array, or the current member.
+  // Pointers to it stay valid while it is being filled: its parent grows only after it is done.
+  Json* place(Json v) {
+    if (frames_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    Frame& top = frames_.back();
+    if (top.array) {
+      auto& elements = top.value->get_ref<Json::array_t&>();
+      elements.push_back(std::move(v));
+      return &elements.back();
+    }
+    *member_ = std::move(v);
+    return member_;
   }
-  std::vector<Frame> stack_;
-  std::vector<std::string>& duplicates_;
+  bool value(Json v) {
+    place(std::move(v));
+    finish_value();
+    return true;
+  }
+  void finish_value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+
+  std::vector<Frame> frames_;
+  Json* member_ = nullptr;
 };
 
 // Line and column of the character before `byte` (nlohmann's offsets point one past the error).
@@ -243,37 +298,32 @@ std::optional<Json> parse_json(std::string_view text, const std::string& file, D
                       "lamina reads JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep");
     return std::nullopt;
   }
-  std::vector<std::string> duplicates;
-  PathTracker tracker(duplicates);
-  Json root;
-  try {
-    root = Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
-      return tracker.on_event(depth, event, parsed);
-    });
-  } catch (const Json::parse_error& e) {
-    if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-      diagnostics.error(file, "", "the file is empty", empty_hint);
-      return std::nullopt;
-    }
-    size_t line = 0, column = 0;
-    line_and_column(text, e.byte, line, column);
-    bool at_end = e.byte >= text.size();
-    diagnostics.error(file, tracker.pointer(),
-                      "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " +
-                          syntax_reason(e.what()),
-                      at_end ? "the file ends early: is it truncated, or is a bracket left open?"
-                             : "NaN, Infinity, comments and trailing commas are not JSON");
+  DocumentBuilder builder;
+  if (Json::sax_parse(text, &builder)) {
+    for (const auto& pointer : builder.duplicates_)
+      diagnostics.error(file, pointer, "duplicate key: JSON keeps only one of the two values", "remove one of them");
+    return std::move(builder.root);
+  }
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+    diagnostics.error(file, "", "the file is empty", empty_hint);
     return std::nullopt;
-  } catch (const Json::out_of_range&) {
+  }
+  if (builder.error_id_ == 406) {
     // nlohmann refuses numbers beyond the double range (error 406) rather than returning inf.
-    diagnostics.error(file, tracker.pointer(),
+    diagnostics.error(file, builder.pointer(),
                       "number is not finite: it overflows the range of a double (about 1.8e308)",
                       "write a finite number");
     return std::nullopt;
   }
-  for (const auto& pointer : duplicates)
-    diagnostics.error(file, pointer, "duplicate key: JSON keeps only one of the two values", "remove one of them");
-  return root;
+  size_t line = 0, column = 0;
+  line_and_column(text, builder.error_position_, line, column);
+  const bool at_end = builder.error_position_ >= text.size();
+  diagnostics.error(file, builder.pointer(),
+                    "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " +
+                        syntax_reason(builder.error_text_),
+                    at_end ? "the file ends early: is it truncated, or is a bracket left open?"
+                           : "NaN, Infinity, comments and trailing commas are not JSON");
+  return std::nullopt;
 }
 
 void check_known_keys(const Json& object, const std::string& file, const std::string& pointer,

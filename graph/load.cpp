@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "graph/stack_size.h"
+
 namespace lamina {
 
 namespace {
@@ -32,6 +34,9 @@ void check_material(CheckedFile& out, size_t index, const NodeRegistry& registry
 
   auto graph = Graph::build(m, file, pointer, out.diagnostics, registry);
   if (!graph) return;
+  // Before anything walks the stack (classification, warnings): a stack beyond the back ends'
+  // capacity is refused here, so that every command agrees with lamina validate.
+  if (!check_stack_size(*graph, file, pointer, out.diagnostics)) return;
   for (size_t i = 0; i < graph->size(); ++i) {
     if (!graph->used(i))
       out.diagnostics.warning(file, pointer + "/nodes/" + std::to_string(i),

@@ -57,19 +57,31 @@ TempDir::~TempDir() {
   std::filesystem::remove_all(path_, ec);
 }
 
-RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir) {
+namespace {
+
+RunResult run(const std::string& prefix, const std::string& args, const std::filesystem::path& working_dir) {
   TempDir capture;
   auto out = capture.path() / "out.txt";
   auto err = capture.path() / "err.txt";
   std::string command;
   if (!working_dir.empty()) command = "cd '" + working_dir.string() + "' && ";
-  command += std::string("'") + LAMINA_CLI + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  command += prefix + "'" + LAMINA_CLI + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
   int status = std::system(command.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = read_file(out);
   r.err = read_file(err);
   return r;
+}
+
+}  // namespace
+
+RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir) {
+  return run("", args, working_dir);
+}
+
+RunResult run_cli_within(int seconds, const std::string& args, const std::filesystem::path& working_dir) {
+  return run("timeout --kill-after=5 " + std::to_string(seconds) + " ", args, working_dir);
 }
 
 }  // namespace lamina::test

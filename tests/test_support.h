@@ -23,6 +23,8 @@ struct RunResult {
 };
 // Runs the lamina CLI with `args` (already shell-quoted where needed) in `working_dir`.
 RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir = {});
+// As run_cli, killed after `seconds` (exit code 124 then): for inputs that once made lamina hang.
+RunResult run_cli_within(int seconds, const std::string& args, const std::filesystem::path& working_dir = {});
 
 // Every file and directory under `dir`, as paths relative to it, sorted.
 std::vector<std::string> listing(const std::filesystem::path& dir);

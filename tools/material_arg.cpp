@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <stdexcept>
 
 #include "graph/compile.h"
@@ -106,14 +107,28 @@ std::optional<std::vector<float>> parse_numbers(std::string_view option, std::st
   while (true) {
     size_t comma = rest.find(',');
     std::string_view item = trim(rest.substr(0, comma));
-    float value = 0.0f;
+    double value = 0.0;
     const char* first = item.data();
     const char* last = item.data() + item.size();
     if (!item.empty() && *first == '+') ++first;
     auto [end, ec] = std::from_chars(first, last, value);
-    if (item.empty() || ec != std::errc() || end != last || !std::isfinite(value))
-      return fail("'" + std::string(item) + "' in '" + std::string(text) + "' is not a finite number");
-    values.push_back(value);
+    // A value below the smallest double (1e-400) is read as 0, like a denormal; above the largest
+    // float it cannot be used.
+    if (ec == std::errc::result_out_of_range && end == last && item.find_first_of("eE") != std::string_view::npos) {
+      const auto exponent = item.substr(item.find_first_of("eE") + 1);
+      if (!exponent.empty() && exponent.front() == '-') {
+        value = 0.0;
+        ec = std::errc();
+      }
+    }
+    if (item.empty() || ec == std::errc::invalid_argument || end != last)
+      return fail("'" + std::string(item) + "' in '" + std::string(text) + "' is not a number");
+    if (std::isnan(value))
+      return fail("'" + std::string(item) + "' in '" + std::string(text) + "' is not a number (NaN)");
+    if (ec != std::errc() || !(std::abs(value) <= double(std::numeric_limits<float>::max())))
+      return fail("'" + std::string(item) + "' in '" + std::string(text) +
+                  "' is beyond the single-precision range (about 3.4e38) the evaluator computes in");
+    values.push_back(static_cast<float>(value));
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
   }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "graph/limits.h"
 #include "graph/lobes.h"
 #include "graph/program.h"
 
@@ -28,17 +29,13 @@ struct EvalPdf {
   float pdf = 0.0f;
 };
 
-// Limits of one Program, so that a query allocates nothing.
-inline constexpr int kMaxStackNodes = 64;
-inline constexpr int kMaxSlots = 256;
-inline constexpr int kMaxLobes = 64;
-
 // Immutable once built: every member function is const and safe to call from many threads at once.
 // A material without texture nodes has its parameters resolved once, at construction; a textured
 // one resolves them at each shading point (once per run of equal uvs in the batch forms).
 class Evaluator {
  public:
-  // Throws std::length_error when the program exceeds the limits above.
+  // Throws std::length_error when the program exceeds the stack limits of graph/limits.h (so that a
+  // query allocates nothing); lamina's checker refuses such materials first (graph/stack_size.h).
   explicit Evaluator(Program program);
 
   const Program& program() const { return program_; }

@@ -209,10 +209,14 @@ std::string oiio_error(const OIIO::ImageInput* input) {
 std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const std::string& format, std::uint64_t max_pixels,
                                          bool srgb, bool header_only, ImageHeader& header) {
   OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+  OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as texture/image outputs it
+  // The readers take the memory proxy from the configuration (OpenImageIO 2.4); the name only picks
+  // the reader and is never opened.
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
   const std::string pseudo_name = "image." + format;
-  auto input = OIIO::ImageInput::open(pseudo_name, &config, &proxy);
+  auto input = OIIO::ImageInput::open(pseudo_name, &config);
   if (!input) throw ImageError("not a readable " + format + " image: " + oiio_error(nullptr));
   const OIIO::ImageSpec spec = input->spec();
   header = ImageHeader{input->format_name(), spec.width, spec.height, spec.nchannels};

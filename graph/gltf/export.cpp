@@ -3,13 +3,17 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
+#include <exception>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numbers>
 #include <set>
+#include <thread>
 
 #include "graph/compile.h"
 #include "graph/cpu/image.h"
@@ -121,6 +125,7 @@ class Writer {
       }
       scene_nodes.push_back(add_light(light));
     }
+    fit_fallbacks();
     for (const auto& object : scene_.objects) scene_nodes.push_back(add_object(object));
     for (const auto& object : scene_.objects)
       if (!object.label.empty()) scene_nodes.push_back(add_label(object));
@@ -337,7 +342,7 @@ class Writer {
     const Material* m = scene_.find_material(name, &file);
     if (!m || !file) throw std::logic_error("export_scene: the scene was not checked (material " + name + ")");
 
-    Fallback fallback = fit_fallback(compile(file->document, name), options_.fallback);
+    Fallback fallback = fallbacks_.at(fallback_of_.at(name));
     Json gltf_material{{"name", name}};
     Json pbr;
     const PbrParams& p = fallback.params;
@@ -372,6 +377,48 @@ class Writer {
     materials_[name] = index;
     reports_.push_back({name, std::move(fallback)});
     return index;
+  }
+
+  // The fallback of every material an object uses, before anything is written: materials that
+  // differ only in their names (and read textures from the same folder) share one fit, and the fits
+  // run on every core. Each fit is deterministic, so the output does not depend on the threads.
+  void fit_fallbacks() {
+    std::vector<Program> programs;
+    std::map<std::string, size_t> by_content;
+    for (const auto& object : scene_.objects) {
+      if (fallback_of_.count(object.material)) continue;
+      const MaterialFileRef* file = nullptr;
+      const Material* m = scene_.find_material(object.material, &file);
+      if (!m || !file)
+        throw std::logic_error("export_scene: the scene was not checked (material " + object.material + ")");
+      Document unnamed;
+      unnamed.materials.push_back(*m);
+      unnamed.materials.back().name = "m";
+      const std::string key = file->resolved.parent_path().string() + "\n" + write_document(unnamed);
+      auto [at, added] = by_content.emplace(key, programs.size());
+      if (added) programs.push_back(compile(file->document, object.material));
+      fallback_of_[object.material] = at->second;
+    }
+    fallbacks_.resize(programs.size());
+    std::atomic<size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    auto work = [&] {
+      for (size_t i = next++; i < programs.size(); i = next++) {
+        try {
+          fallbacks_[i] = fit_fallback(programs[i], options_.fallback);
+        } catch (...) {
+          std::lock_guard lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+        }
+      }
+    };
+    const size_t threads = std::min<size_t>(programs.size(), std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& thread : pool) thread.join();
+    if (failure) std::rethrow_exception(failure);
   }
 
   // The canonical material as lamina writes it, and a glTF texture per texture/image node.
@@ -455,6 +502,8 @@ class Writer {
   std::map<std::string, int> indices_, materials_, file_textures_;
   std::map<int, int> samplers_;
   std::vector<MaterialReport> reports_;
+  std::vector<Fallback> fallbacks_;            // fitted by fit_fallbacks()
+  std::map<std::string, size_t> fallback_of_;  // material name -> index into fallbacks_
   int baked_count_ = 0;
 };
 

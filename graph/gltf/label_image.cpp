@@ -63,19 +63,27 @@ LabelImage render_label(const std::string& text) {
   std::vector<float> c(w * h);
   coverage.get_pixels(OIIO::ROI(0, out.width, 0, out.height), OIIO::TypeDesc::FLOAT, c.data());
 
-  // The halo: the coverage dilated by a disk of radius kHalo, its rim antialiased.
+  // The halo: the coverage dilated by a disk of radius kHalo, its rim antialiased. The disk's
+  // weights are the same for every pixel: computed once.
+  constexpr int kReach = kHalo + 1, kSide = 2 * kReach + 1;
+  float rim[kSide][kSide];
+  for (int dy = -kReach; dy <= kReach; ++dy)
+    for (int dx = -kReach; dx <= kReach; ++dx)
+      rim[dy + kReach][dx + kReach] = std::clamp(float(kHalo) + 1.0f - std::hypot(float(dx), float(dy)), 0.0f, 1.0f);
+  // Spread from the covered pixels only (most of a label is empty); max is order-independent, so
+  // the result is that of gathering at every pixel.
   std::vector<float> halo(w * h, 0.0f);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      float best = 0.0f;
-      for (int dy = -kHalo - 1; dy <= kHalo + 1; ++dy)
-        for (int dx = -kHalo - 1; dx <= kHalo + 1; ++dx) {
-          const int sx = x + dx, sy = y + dy;
-          if (sx < 0 || sy < 0 || sx >= out.width || sy >= out.height) continue;
-          const float rim = std::clamp(float(kHalo) + 1.0f - std::hypot(float(dx), float(dy)), 0.0f, 1.0f);
-          best = std::max(best, rim * c[static_cast<size_t>(sy) * w + static_cast<size_t>(sx)]);
+  for (int sy = 0; sy < out.height; ++sy)
+    for (int sx = 0; sx < out.width; ++sx) {
+      const float source = c[static_cast<size_t>(sy) * w + static_cast<size_t>(sx)];
+      if (!(source > 0.0f)) continue;
+      for (int dy = -kReach; dy <= kReach; ++dy)
+        for (int dx = -kReach; dx <= kReach; ++dx) {
+          const int x = sx - dx, y = sy - dy;
+          if (x < 0 || y < 0 || x >= out.width || y >= out.height) continue;
+          float& target = halo[static_cast<size_t>(y) * w + static_cast<size_t>(x)];
+          target = std::max(target, rim[dy + kReach][dx + kReach] * source);
         }
-      halo[static_cast<size_t>(y) * w + static_cast<size_t>(x)] = best;
     }
 
   // White text over the black halo ("over" compositing), stored with straight alpha as glTF wants.

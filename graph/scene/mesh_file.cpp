@@ -478,11 +478,7 @@ TriangleMesh load_mesh_bytes(const std::string& bytes, const std::filesystem::pa
 }  // namespace
 
 TriangleMesh load_mesh_file(const Reference& file, const AssetPolicy& policy) {
-  try {
-    return load_mesh_bytes(read_reference(file, kMaxBinaryFileBytes, policy), file.path);
-  } catch (const ReferenceError& e) {
-    throw IoError(e.what());
-  }
+  return load_mesh_bytes(read_reference(file, kMaxBinaryFileBytes, policy), file.path);
 }
 
 TriangleMesh load_mesh_file(const std::filesystem::path& path) {

@@ -274,7 +274,10 @@ class SceneReader {
   std::optional<glm::dvec3> direction(glm::dvec3 v, const std::string& pointer, const std::string& what) {
     double length = glm::length(v);
     if (!(length > 1e-12)) {
-      error(pointer, what + " has zero length: it gives no direction", "write a non-zero vector");
+      error(pointer,
+            what + (length == 0.0 ? " has zero length" : " has length " + number_text(length) + ", below 1e-12") +
+                ": it gives no direction",
+            "write a vector of length well above 0");
       return std::nullopt;
     }
     return v / length;
@@ -349,8 +352,11 @@ class SceneReader {
     c.znear = v.number("znear", c.znear);
     c.zfar = v.optional_number("zfar");
     bool ok = true;
-    if (glm::length(c.look_at - c.position) < 1e-9) {
-      error(pointer + "/look_at", "look_at equals position: the camera has no view direction",
+    if (const double distance = glm::length(c.look_at - c.position); !(distance >= 1e-9)) {
+      error(pointer + "/look_at",
+            (distance == 0.0 ? std::string("look_at equals position")
+                             : "look_at is " + number_text(distance) + " from position, closer than 1e-9") +
+                ": the camera has no view direction",
             "look at a point away from the camera");
       ok = false;
     } else if (auto up = direction(c.up, pointer + "/up", "up")) {
@@ -455,7 +461,10 @@ class SceneReader {
       glm::dquat rotation(q[3], q[0], q[1], q[2]);
       double length = glm::length(rotation);
       if (!(length > 1e-12)) {
-        error(pointer + "/rotation", "the quaternion has zero length: it is no rotation",
+        error(pointer + "/rotation",
+              "the quaternion has " +
+                  (length == 0.0 ? std::string("zero length") : "length " + number_text(length) + ", below 1e-12") +
+                  ": it is no rotation",
               "the identity is [0, 0, 0, 1] (x, y, z, w)");
         return std::nullopt;
       }
@@ -537,6 +546,9 @@ class SceneReader {
     }
     try {
       object_mesh(o, policy_);
+    } catch (const ReferenceError& e) {
+      known->second.ok = false;
+      error(pointer, std::string("mesh file ") + e.what(), e.hint());
     } catch (const IoError& e) {
       known->second.ok = false;
       error(pointer, e.what());

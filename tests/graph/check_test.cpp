@@ -3,7 +3,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "graph/compile.h"
 #include "graph/load.h"
+#include "graph/lobes.h"
+#include "graph/stack_size.h"
 #include "test_support.h"
 
 using namespace lamina;
@@ -154,4 +157,26 @@ TEST_CASE("graph links resolve in topological order with defaults applied") {
   const Value* distribution = g.value(4, "distribution");
   REQUIRE(distribution);
   CHECK(std::get<std::string>(*distribution) == "beckmann");
+}
+
+TEST_CASE("the checker's count of a stack's size is what compiling it takes, for every bundled and test material") {
+  std::vector<std::filesystem::path> files = test::example_files();
+  for (const char* folder : {"tests/data/glsl", "tests/data/physics"})
+    for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / folder))
+      if (e.path().extension() == ".json") files.push_back(e.path());
+  size_t materials = 0;
+  for (const auto& file : files) {
+    CAPTURE(file.string());
+    CheckedFile checked = check_file(file);
+    REQUIRE(checked.ok());
+    for (const auto& graph : checked.graphs) {
+      const StackSize size = measure_stack(*graph);
+      const Program program = compile(*graph, file.string(), checked.document.policy);
+      CHECK(size.stack_nodes == int(program.stack.size()));
+      CHECK(size.registers == program.slot_count);
+      CHECK(size.lobes == int(collect_lobes(program).size()));
+      ++materials;
+    }
+  }
+  CHECK(materials > files.size() / 2);
 }

@@ -84,7 +84,10 @@ TEST_CASE("lamina eval rejects mistakes with exit 2 and nothing on stdout") {
   };
   const std::string car = std::string(" ") + kCarPaint;
   const Case cases[] = {
-      {"eval" + car + " --wi 1,x,0 --wo 0,0,1", "--wi: 'x' in '1,x,0' is not a finite number"},
+      {"eval" + car + " --wi 1,x,0 --wo 0,0,1", "--wi: 'x' in '1,x,0' is not a number"},
+      {"eval" + car + " --wi 0,0,1 --wo 0,0,1e39", "--wo: '1e39' in '0,0,1e39' is beyond the single-precision range"},
+      // 1e-320 is a finite number (below float precision: 0); what is wrong is the zero direction.
+      {"eval" + car + " --wi 0,0,1 --wo 0,0,1e-320", "--wo: the zero vector '0,0,1e-320' has no direction"},
       {"eval" + car + " --wi 0,0,1 --wo 1,0", "--wo: expected 3 numbers, got 2"},
       {"eval" + car + " --wi 0,0,1 --wo nan,0,1", "--wo: 'nan'"},
       {"eval" + car + " --wi 0,0,0 --wo 0,0,1", "--wi: the zero vector"},

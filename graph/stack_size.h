@@ -1,0 +1,28 @@
+// How much of the back ends' fixed capacity a material takes (graph/limits.h): counted on the
+// checked graph, so that `lamina validate` refuses what no command could evaluate, and every
+// command agrees with it.
+#pragma once
+
+#include <string>
+
+#include "graph/diagnostics.h"
+#include "graph/graph.h"
+
+namespace lamina {
+
+struct StackSize {
+  int stack_nodes = 0;  // layers, mixes and substrates that feed the surface
+  int lobes = 0;        // one per interface and substrate on each path through the mixes; at most kMaxLobes + 1
+  int registers = 0;    // floats the texture and math nodes feeding the surface produce
+};
+
+// Linear in the graph's size: every count is made once per node, in topological order, and the
+// lobe count stops growing past the limit (a stack shared by both sides of nested mixes doubles
+// its lobes per level).
+StackSize measure_stack(const Graph& graph);
+
+// Reports, at the material's "surface", each count beyond its limit; returns whether all fit.
+bool check_stack_size(const Graph& graph, const std::string& file, const std::string& material_pointer,
+                      Diagnostics& diagnostics);
+
+}  // namespace lamina
