@@ -7,12 +7,13 @@
 #include <sstream>
 
 #include "graph/json_values.h"
+#include "graph/limits.h"
 #include "graph/number_text.h"
 
 namespace lamina {
 
 bool is_identifier(std::string_view text) {
-  if (text.empty()) return false;
+  if (text.empty() || text.size() > kMaxIdentifierLength) return false;
   auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
   auto digit = [](char c) { return c >= '0' && c <= '9'; };
   if (!alpha(text[0])) return false;
@@ -135,7 +136,9 @@ class Reader {
     if (auto name = j.find("name"); name == j.end()) {
       error(pointer, "missing \"name\"", "materials are looked up by name");
     } else if (!name->is_string() || !is_identifier(name->get<std::string>())) {
-      error(pointer + "/name", "expected a name of letters, digits and '_' not starting with a digit",
+      error(pointer + "/name",
+            "expected a name of at most " + std::to_string(kMaxIdentifierLength) +
+                " letters, digits and '_', not starting with a digit, found " + describe(*name),
             "names become GLSL and glTF identifiers");
     } else {
       m.name = name->get<std::string>();
@@ -198,7 +201,8 @@ class Reader {
       error(pointer, "missing \"id\"", "links name nodes by id, e.g. \"id\": \"varnish\"");
     } else if (!id->is_string() || !is_identifier(id->get<std::string>())) {
       error(pointer + "/id",
-            "expected an id of letters, digits and '_' not starting with a digit, found " + describe(*id));
+            "expected an id of at most " + std::to_string(kMaxIdentifierLength) +
+                " letters, digits and '_', not starting with a digit, found " + describe(*id));
     } else {
       n.id = id->get<std::string>();
     }

@@ -14,6 +14,10 @@ namespace lamina {
 // 6 levels, a glTF file about 10.
 inline constexpr int kMaxJsonDepth = 128;
 
+// Material names and node ids: they become GLSL identifiers (GLSL ES allows 1024 characters in
+// one, lamina prefixes and suffixes them) and the labels of sample-sheet spheres.
+inline constexpr size_t kMaxIdentifierLength = 64;
+
 // Material and scene files, and the JSON of a glTF file.
 inline constexpr std::uint64_t kMaxJsonFileBytes = std::uint64_t{64} << 20;  // 64 MiB
 // A .glb, a glTF buffer (.bin) and an image file.

@@ -7,6 +7,7 @@
 #include "graph/diagnostics.h"
 #include "graph/document.h"
 #include "graph/json_write.h"
+#include "graph/limits.h"
 #include "graph/number_text.h"
 
 namespace lamina {
@@ -15,8 +16,10 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]*$";
-constexpr const char* kLinkPattern = "^@[A-Za-z_][A-Za-z0-9_]*(\\.[A-Za-z_][A-Za-z0-9_]*)?$";
+// Identifiers of at most kMaxIdentifierLength (64) characters: one leading, up to 63 more.
+constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]{0,63}$";
+constexpr const char* kLinkPattern = "^@[A-Za-z_][A-Za-z0-9_]{0,63}(\\.[A-Za-z_][A-Za-z0-9_]{0,63})?$";
+static_assert(kMaxIdentifierLength == 64, "the patterns above spell out the identifier length");
 
 Json def_ref(const std::string& name) { return Json{{"$ref", "#/$defs/" + name}}; }
 

@@ -405,3 +405,17 @@ TEST_CASE("keys and strings are echoed with control characters escaped, so no me
     start = end == std::string::npos ? o.run.err.size() : end + 1;
   }
 }
+
+TEST_CASE("a material name of 100,000 characters is refused by every command, not rendered as a label") {
+  test::TempDir dir;
+  std::string text = material_with("[1, 1, 1]");
+  text.replace(text.find("\"m\""), 3, "\"" + std::string(100000, 'n') + "\"");
+  write(dir.path() / "long.json", text);
+  for (const std::string& command : kMaterialCommands) {
+    CAPTURE(command);
+    const Outcome o = run_in(dir.path(), command_on(command, "long.json"), 20);
+    expect_refused(o, "long.json:/materials/0/name: expected a name of at most " + std::to_string(kMaxIdentifierLength),
+                   "(a string of 100000 bytes)");
+    CHECK(o.run.err.size() < 4096);
+  }
+}
