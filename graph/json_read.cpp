@@ -200,9 +200,8 @@ class Reader {
     if (auto id = j.find("id"); id == j.end()) {
       error(pointer, "missing \"id\"", "links name nodes by id, e.g. \"id\": \"varnish\"");
     } else if (!id->is_string() || !is_identifier(id->get<std::string>())) {
-      error(pointer + "/id",
-            "expected an id of at most " + std::to_string(kMaxIdentifierLength) +
-                " letters, digits and '_', not starting with a digit, found " + describe(*id));
+      error(pointer + "/id", "expected an id of at most " + std::to_string(kMaxIdentifierLength) +
+                                 " letters, digits and '_', not starting with a digit, found " + describe(*id));
     } else {
       n.id = id->get<std::string>();
     }

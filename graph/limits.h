@@ -29,6 +29,11 @@ inline constexpr std::uint64_t kDefaultMaxImagePixels = std::uint64_t{1} << 26;
 // Each side of an image, whatever the budget (OpenImageIO's sizes are ints).
 inline constexpr std::uint64_t kMaxImageSide = std::uint64_t{1} << 20;
 
+// A scene: the distinct shapes its objects use (a built-in shape per distinct size and
+// tessellation, a mesh file once however often it is placed) have at most this many vertices in
+// all, so that a small scene cannot make lamina tessellate gigabytes of geometry.
+inline constexpr size_t kMaxSceneVertices = size_t{1} << 23;  // 8,388,608
+
 // A material's stack as the back ends hold it (the CPU evaluator's fixed arrays; GLSL unrolls the
 // same): stack nodes (layers, mixes, interfaces' layers and substrates reached from the surface),
 // lobes (one per interface and substrate, per path through the mixes) and texture registers.

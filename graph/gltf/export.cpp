@@ -305,21 +305,6 @@ class Writer {
     return label_quad_;
   }
 
-  static std::string geometry_key(const SceneObject& o) {
-    switch (o.shape) {
-      case ShapeType::Sphere: return "sphere " + std::to_string(o.radius) + " " + std::to_string(o.segments);
-      case ShapeType::Plane: return "plane " + std::to_string(o.plane_size.x) + " " + std::to_string(o.plane_size.y);
-      case ShapeType::Box:
-        return "box " + std::to_string(o.box_size.x) + " " + std::to_string(o.box_size.y) + " " +
-               std::to_string(o.box_size.z);
-      case ShapeType::Torus:
-        return "torus " + std::to_string(o.major_radius) + " " + std::to_string(o.minor_radius) + " " +
-               std::to_string(o.segments);
-      case ShapeType::Mesh: return "mesh " + o.resolved_mesh_file.string();
-    }
-    return {};
-  }
-
   // Vertex data is written once per distinct shape and shared by every primitive that uses it.
   Json geometry(const SceneObject& object) {
     const std::string key = geometry_key(object);

@@ -66,10 +66,26 @@ TriangleMesh quad(glm::dvec3 centre, glm::dvec3 right, glm::dvec3 down, double h
 
 }  // namespace
 
+int sphere_rings(int segments) { return std::max(2, segments / 2); }
+int torus_rings(int segments) { return std::max(4, segments / 2); }
+
+size_t shape_vertices(const SceneObject& object) {
+  // uv_grid: (columns + 1) x (rows + 1); quad: 4 per face.
+  auto grid = [](int columns, int rows) { return size_t(columns + 1) * size_t(rows + 1); };
+  switch (object.shape) {
+    case ShapeType::Sphere: return grid(object.segments, sphere_rings(object.segments));
+    case ShapeType::Torus: return grid(object.segments, torus_rings(object.segments));
+    case ShapeType::Plane: return 4;
+    case ShapeType::Box: return 24;
+    case ShapeType::Mesh: return 0;
+  }
+  return 0;
+}
+
 TriangleMesh sphere_mesh(double radius, int segments) {
   const double pi = glm::pi<double>();
   return uv_grid(
-      segments, std::max(2, segments / 2),
+      segments, sphere_rings(segments),
       [&](double u, double v, glm::dvec3& p, glm::dvec3& n, glm::dvec3& t) {
         double phi = 2.0 * pi * u, theta = pi * v;
         n = glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
@@ -101,7 +117,7 @@ TriangleMesh box_mesh(glm::dvec3 size) {
 TriangleMesh torus_mesh(double major_radius, double minor_radius, int segments) {
   const double pi = glm::pi<double>();
   return uv_grid(
-      segments, std::max(4, segments / 2),
+      segments, torus_rings(segments),
       [&](double u, double v, glm::dvec3& p, glm::dvec3& n, glm::dvec3& t) {
         double phi = 2.0 * pi * u, psi = 2.0 * pi * v;
         // psi = 0 is the outer equator; the tube is walked downwards there so that v runs down.

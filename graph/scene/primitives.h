@@ -21,4 +21,10 @@ TriangleMesh box_mesh(glm::dvec3 size);
 // `segments` around the axis, segments / 2 (at least 4) around the tube.
 TriangleMesh torus_mesh(double major_radius, double minor_radius, int segments);
 
+// The rings across a sphere or a torus of `segments` around, as the meshes above build them.
+int sphere_rings(int segments);
+int torus_rings(int segments);
+// The vertices the built-in shape of `object` has, without building it (0 for a mesh file).
+size_t shape_vertices(const SceneObject& object);
+
 }  // namespace lamina

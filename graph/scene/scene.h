@@ -128,4 +128,8 @@ Scene sample_sheet(const Document& materials, const std::filesystem::path& mater
 // when a mesh file cannot be read, lamina::Error for one lamina cannot use.
 TriangleMesh object_mesh(const SceneObject& object, const AssetPolicy& policy);
 
+// Objects with the same key have the same mesh (shape, size, tessellation or mesh file): the glTF
+// export writes it once, and the scene's vertex budget counts it once.
+std::string geometry_key(const SceneObject& object);
+
 }  // namespace lamina

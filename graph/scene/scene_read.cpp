@@ -4,11 +4,13 @@
 #include <set>
 
 #include "graph/json_values.h"
+#include "graph/limits.h"
 #include "graph/load.h"
 #include "graph/number_text.h"
 #include "graph/scene/scene.h"
 
 #include "graph/cpu/image.h"
+#include "graph/scene/primitives.h"
 #include "graph/scene/scene_fields.h"
 
 namespace lamina {
@@ -92,6 +94,7 @@ class SceneReader {
       }
     });
     check_material_names(scene, object_pointers);
+    check_geometry_budget(scene, object_pointers);
     return scene;
   }
 
@@ -545,7 +548,7 @@ class SceneReader {
       return known->second.ok;
     }
     try {
-      object_mesh(o, policy_);
+      known->second.vertices = object_mesh(o, policy_).positions.size();
     } catch (const ReferenceError& e) {
       known->second.ok = false;
       error(pointer, std::string("mesh file ") + e.what(), e.hint());
@@ -565,6 +568,29 @@ class SceneReader {
       }
     }
     return known->second.ok;
+  }
+
+  // kMaxSceneVertices over the distinct shapes, counted without building them; the first object
+  // whose shape takes the scene beyond it is the error.
+  void check_geometry_budget(const Scene& scene, const std::vector<std::string>& pointers) {
+    std::set<std::string> counted;
+    size_t total = 0;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+      const SceneObject& o = scene.objects[i];
+      if (!counted.insert(geometry_key(o)).second) continue;
+      const size_t vertices =
+          o.shape == ShapeType::Mesh ? mesh_files_[o.resolved_mesh_file].vertices : shape_vertices(o);
+      total += vertices;
+      if (total > kMaxSceneVertices) {
+        error(pointers[i],
+              "with this object the scene's distinct shapes have " + std::to_string(total) +
+                  " vertices, more than the " + std::to_string(kMaxSceneVertices) + " lamina builds for one scene",
+              "this shape has " + std::to_string(vertices) +
+                  "; objects of the same shape, size and tessellation share one mesh: reuse shapes, or use fewer "
+                  "segments");
+        return;
+      }
+    }
   }
 
   void check_material_names(const Scene& scene, const std::vector<std::string>& pointers) {
@@ -591,6 +617,7 @@ class SceneReader {
   struct MeshFileUse {
     bool ok = true;             // whether it loaded
     std::string first_pointer;  // the first object's "file" that named it
+    size_t vertices = 0;        // over every instance of its meshes
   };
   std::map<std::filesystem::path, MeshFileUse> mesh_files_;  // by resolved path
 };

@@ -419,3 +419,27 @@ TEST_CASE("a material name of 100,000 characters is refused by every command, no
     CHECK(o.run.err.size() < 4096);
   }
 }
+
+TEST_CASE("a small scene cannot make lamina tessellate gigabytes: its distinct shapes have a vertex budget") {
+  test::TempDir dir;
+  fs::copy_file(test::source_dir() / "examples/materials/brass.json", dir.path() / "brass.json");
+  // 100 spheres of 1024 segments, each of its own radius: about 3.8 GB of glTF before the budget.
+  std::string objects;
+  for (int i = 0; i < 100; ++i)
+    objects += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) +
+               R"(", "shape": "sphere", "segments": 1024, "radius": )" + std::to_string(1.0 + i * 0.001) +
+               R"(, "material": "brass"})";
+  write(dir.path() / "spheres.json", R"({"format": 1, "materials": ["brass.json"], "objects": [)" + objects + "]}");
+  for (const std::string command : {"validate spheres.json", "gltf spheres.json -o out.glb"}) {
+    CAPTURE(command);
+    expect_refused(run_in(dir.path(), command, 20), "spheres.json:/objects/15: with this object the scene's",
+                   "more than the " + std::to_string(kMaxSceneVertices));
+  }
+  // The same sphere placed 100 times is one mesh, well within the budget.
+  std::string same;
+  for (int i = 0; i < 100; ++i)
+    same += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) +
+            R"(", "shape": "sphere", "segments": 1024, "material": "brass"})";
+  write(dir.path() / "same.json", R"({"format": 1, "materials": ["brass.json"], "objects": [)" + same + "]}");
+  CHECK(run_in(dir.path(), "validate same.json").run.exit_code == 0);
+}
