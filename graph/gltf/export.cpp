@@ -327,23 +327,30 @@ class Writer {
     const Material* m = scene_.find_material(name, &file);
     if (!m || !file) throw std::logic_error("export_scene: the scene was not checked (material " + name + ")");
 
-    Fallback fallback = fallbacks_.at(fallback_of_.at(name));
+    const size_t shared = fallback_of_.at(name);
+    Fallback fallback = fallbacks_.at(shared);
+    // Materials sharing a fit share its baked textures too.
+    auto baked = [&](const BakedImage& image, int which) {
+      auto [at, added] = shared_textures_.emplace(std::make_pair(shared, which), -1);
+      if (added) at->second = baked_texture(image);
+      return at->second;
+    };
     Json gltf_material{{"name", name}};
     Json pbr;
     const PbrParams& p = fallback.params;
     pbr["baseColorFactor"] = tidy_array({p.base_color.r, p.base_color.g, p.base_color.b, 1.0f});
-    if (fallback.base_color) pbr["baseColorTexture"] = Json{{"index", baked_texture(*fallback.base_color)}};
+    if (fallback.base_color) pbr["baseColorTexture"] = Json{{"index", baked(*fallback.base_color, 0)}};
     pbr["metallicFactor"] = tidy(p.metallic);
     pbr["roughnessFactor"] = tidy(p.roughness);
     if (fallback.metallic_roughness)
-      pbr["metallicRoughnessTexture"] = Json{{"index", baked_texture(*fallback.metallic_roughness)}};
+      pbr["metallicRoughnessTexture"] = Json{{"index", baked(*fallback.metallic_roughness, 1)}};
     gltf_material["pbrMetallicRoughness"] = pbr;
 
     Json extensions = Json::object();
     if (fallback.uses_clearcoat) {
       Json c{{"clearcoatFactor", tidy(p.clearcoat)}, {"clearcoatRoughnessFactor", tidy(p.clearcoat_roughness)}};
       if (fallback.clearcoat) {
-        int texture = baked_texture(*fallback.clearcoat);
+        int texture = baked(*fallback.clearcoat, 2);
         c["clearcoatTexture"] = Json{{"index", texture}};           // R
         c["clearcoatRoughnessTexture"] = Json{{"index", texture}};  // G
       }
@@ -487,8 +494,9 @@ class Writer {
   std::map<std::string, int> indices_, materials_, file_textures_;
   std::map<int, int> samplers_;
   std::vector<MaterialReport> reports_;
-  std::vector<Fallback> fallbacks_;            // fitted by fit_fallbacks()
-  std::map<std::string, size_t> fallback_of_;  // material name -> index into fallbacks_
+  std::vector<Fallback> fallbacks_;                        // fitted by fit_fallbacks()
+  std::map<std::string, size_t> fallback_of_;              // material name -> index into fallbacks_
+  std::map<std::pair<size_t, int>, int> shared_textures_;  // (fallback, which image) -> glTF texture
   int baked_count_ = 0;
 };
 
