@@ -5,8 +5,6 @@ find_package(OpenImageIO REQUIRED)
 find_package(glm REQUIRED)
 # Embree 3 (target `embree`, no namespace) for the path tracer; the CLI reports its version.
 find_package(embree 3 REQUIRED)
-# A shared library in Debian: link TinyGLTF::TinyGLTF and never define TINYGLTF_IMPLEMENTATION.
-find_package(TinyGLTF REQUIRED)
 # libpng directly for PNG textures: OpenImageIO's PNG reader lets libpng print on standard error.
 find_package(PNG REQUIRED)
 

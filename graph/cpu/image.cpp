@@ -17,21 +17,9 @@ namespace {
 
 bool starts_with(std::string_view bytes, std::string_view magic) { return bytes.substr(0, magic.size()) == magic; }
 
-// What the bytes say they are (the file name's extension only when they do not): the decoder to use.
+// The decoder to use: what the bytes say they are, else the file name's extension.
 std::string format_of(std::string_view bytes, const std::string& name) {
-  using namespace std::string_view_literals;
-  if (starts_with(bytes, "\x89PNG\r\n\x1a\n"sv)) return "png";
-  if (starts_with(bytes, "\xff\xd8\xff"sv)) return "jpg";
-  if (starts_with(bytes, "\x76\x2f\x31\x01"sv)) return "exr";
-  if (starts_with(bytes, "II*\0"sv) || starts_with(bytes, "MM\0*"sv) || starts_with(bytes, "II+\0"sv) ||
-      starts_with(bytes, "MM\0+"sv))
-    return "tif";
-  if (starts_with(bytes, "#?RADIANCE"sv) || starts_with(bytes, "#?RGBE"sv)) return "hdr";
-  if (starts_with(bytes, "BM"sv)) return "bmp";
-  if (starts_with(bytes, "GIF87a"sv) || starts_with(bytes, "GIF89a"sv)) return "gif";
-  if (starts_with(bytes, "RIFF"sv) && bytes.size() >= 12 && bytes.substr(8, 4) == "WEBP") return "webp";
-  if (starts_with(bytes, "8BPS"sv)) return "psd";
-  if (starts_with(bytes, "DDS "sv)) return "dds";
+  if (std::string format = image_format_of(bytes); !format.empty()) return format;
   std::string ext = std::filesystem::path(name).extension().string();
   if (!ext.empty()) ext.erase(0, 1);
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -264,6 +252,23 @@ std::shared_ptr<LinearImage> decode(std::string_view bytes, const std::string& n
 }
 
 }  // namespace
+
+std::string image_format_of(std::string_view bytes) {
+  using namespace std::string_view_literals;
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n"sv)) return "png";
+  if (starts_with(bytes, "\xff\xd8\xff"sv)) return "jpg";
+  if (starts_with(bytes, "\x76\x2f\x31\x01"sv)) return "exr";
+  if (starts_with(bytes, "II*\0"sv) || starts_with(bytes, "MM\0*"sv) || starts_with(bytes, "II+\0"sv) ||
+      starts_with(bytes, "MM\0+"sv))
+    return "tif";
+  if (starts_with(bytes, "#?RADIANCE"sv) || starts_with(bytes, "#?RGBE"sv)) return "hdr";
+  if (starts_with(bytes, "BM"sv)) return "bmp";
+  if (starts_with(bytes, "GIF87a"sv) || starts_with(bytes, "GIF89a"sv)) return "gif";
+  if (starts_with(bytes, "RIFF"sv) && bytes.size() >= 12 && bytes.substr(8, 4) == "WEBP") return "webp";
+  if (starts_with(bytes, "8BPS"sv)) return "psd";
+  if (starts_with(bytes, "DDS "sv)) return "dds";
+  return "";
+}
 
 ImageHeader read_image_header(std::string_view bytes, const std::string& name) {
   ImageHeader header;

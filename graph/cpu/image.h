@@ -39,6 +39,10 @@ struct ImageHeader {
   int channels = 0;
 };
 
+// What the bytes of an encoded image say they are, by their signature: "png", "jpg", "exr", "tif",
+// "hdr", "bmp", "gif", "webp", "psd", "dds"; "" when no signature is known.
+std::string image_format_of(std::string_view bytes);
+
 // Reads the header of an encoded image without decoding any pixel. `name` (a file name) picks the
 // decoder only when the bytes do not say what they are. Throws ImageError.
 ImageHeader read_image_header(std::string_view bytes, const std::string& name);

@@ -17,6 +17,7 @@
 
 #include "graph/compile.h"
 #include "graph/cpu/image.h"
+#include "graph/gltf/constants.h"
 #include "graph/gltf/gltf_buffer.h"
 #include "graph/gltf/label_image.h"
 #include "graph/gltf/png_encode.h"
@@ -27,13 +28,6 @@
 namespace lamina::gltf {
 
 namespace {
-
-// glTF sampler enumerations (spec sec. 5.26).
-constexpr int kLinear = 9729;
-constexpr int kLinearMipmapLinear = 9987;
-constexpr int kRepeat = 10497;
-constexpr int kClampToEdge = 33071;
-constexpr int kMirroredRepeat = 33648;
 
 constexpr const char* kUnlit = "KHR_materials_unlit";
 
@@ -87,11 +81,10 @@ glm::dmat4 object_matrix(const Transform& t) {
          glm::scale(glm::dmat4(1.0), t.scale);
 }
 
-std::string mime_of(const std::vector<unsigned char>& bytes) {
-  static const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
-  if (bytes.size() >= 8 && std::equal(png, png + 8, bytes.begin())) return "image/png";
-  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return "image/jpeg";
-  return "";
+// The glTF mimeType of images glTF holds as they are (PNG and JPEG), "" for the others.
+std::string mime_of(std::string_view bytes) {
+  const std::string format = image_format_of(bytes);
+  return format == "png" ? "image/png" : format == "jpg" ? "image/jpeg" : "";
 }
 
 // Images glTF cannot hold (EXR, TIFF, HDR, ...) become 8-bit RGBA PNGs; values are clamped to
@@ -462,7 +455,7 @@ class Writer {
     const std::string name = reference.path.filename().string();
     const std::string text = read_reference(reference, kMaxBinaryFileBytes, policy);
     std::vector<unsigned char> bytes(text.begin(), text.end());
-    std::string mime = mime_of(bytes);
+    std::string mime = mime_of(text);
     if (mime.empty()) {
       bytes = png_from_any_image(text, name, policy.max_image_pixels);
       mime = "image/png";

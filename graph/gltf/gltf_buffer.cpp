@@ -1,5 +1,7 @@
 #include "graph/gltf/gltf_buffer.h"
 
+#include "graph/gltf/constants.h"
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -7,13 +9,6 @@
 namespace lamina::gltf {
 
 namespace {
-
-// glTF's enumerations (spec sec. 5.1.3 and 5.11.6).
-constexpr int kFloat = 5126;
-constexpr int kUnsignedShort = 5123;
-constexpr int kUnsignedInt = 5125;
-constexpr int kArrayBuffer = 34962;
-constexpr int kElementArrayBuffer = 34963;
 
 void pad_to_four(std::vector<unsigned char>& bytes, unsigned char fill) {
   while (bytes.size() % 4 != 0) bytes.push_back(fill);
@@ -91,15 +86,15 @@ std::vector<unsigned char> pack_glb(const std::string& json, std::span<const uns
   const size_t total = 12 + 8 + json_chunk.size() + (has_bin ? 8 + bin_chunk.size() : 0);
   std::vector<unsigned char> out;
   out.reserve(total);
-  append_u32(out, 0x46546C67u);  // "glTF"
-  append_u32(out, 2);
+  append_u32(out, kGlbMagic);
+  append_u32(out, kGlbVersion);
   append_u32(out, static_cast<uint32_t>(total));
   append_u32(out, static_cast<uint32_t>(json_chunk.size()));
-  append_u32(out, 0x4E4F534Au);  // "JSON"
+  append_u32(out, kChunkJson);
   out.insert(out.end(), json_chunk.begin(), json_chunk.end());
   if (has_bin) {
     append_u32(out, static_cast<uint32_t>(bin_chunk.size()));
-    append_u32(out, 0x004E4942u);  // "BIN\0"
+    append_u32(out, kChunkBin);
     out.insert(out.end(), bin_chunk.begin(), bin_chunk.end());
   }
   return out;

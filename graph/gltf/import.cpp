@@ -1,17 +1,15 @@
 #include "graph/gltf/import.h"
 
-#include <tiny_gltf.h>
-
 #include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <set>
 #include <vector>
 
 #include "graph/cpu/image.h"
 #include "graph/gltf/export.h"
+#include "graph/gltf/gltf_read.h"
 #include "graph/gltf/pbr_to_layers.h"
 #include "graph/gltf/uri.h"
 #include "graph/json_read.h"
@@ -23,7 +21,7 @@ namespace lamina::gltf {
 
 namespace {
 
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;
 
 // Extensions this importer reads; any other one is reported and ignored.
 constexpr const char* kIor = "KHR_materials_ior";
@@ -35,23 +33,10 @@ const std::set<std::string> kReadExtensions{kExtensionName, kIor, kSpecular, kCl
 const std::set<std::string> kNotMaterialExtensions{"KHR_lights_punctual", "KHR_mesh_quantization",
                                                    "EXT_mesh_gpu_instancing", "KHR_xmp_json_ld"};
 
-// glTF 2.0 sec. 5.26 (sampler.wrapS) enumerants.
-constexpr int kWrapClamp = 33071;
-constexpr int kWrapMirror = 33648;
-
-// The images are extracted as they are stored, so the loader only keeps the encoded bytes.
-bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                  int size, void*) {
-  image->image.assign(bytes, bytes + size);
-  image->as_is = true;
-  return true;
-}
-
-std::string extension_for(const std::vector<unsigned char>& bytes) {
-  static const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
-  if (bytes.size() >= 8 && std::equal(png, png + 8, bytes.begin())) return ".png";
-  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return ".jpg";
-  return "";
+// ".png" or ".jpg" for the image formats glTF holds, by the bytes' signature; "" otherwise.
+std::string extension_for(std::string_view bytes) {
+  const std::string format = image_format_of(bytes);
+  return format == "png" || format == "jpg" ? "." + format : "";
 }
 
 std::string lowercase(std::string s) {
@@ -87,36 +72,6 @@ std::string sanitise_file_name(const std::string& name) {
   return out;
 }
 
-// A scratch directory holding the extracted textures while the imported document is checked.
-class ScratchDirectory {
- public:
-  ScratchDirectory() {
-    std::random_device random;
-    const auto base = std::filesystem::temp_directory_path();
-    for (int attempt = 0; attempt < 100; ++attempt) {
-      path_ = base / ("lamina-import-" + std::to_string(random()));
-      if (std::filesystem::create_directory(path_)) return;
-    }
-    throw IoError("cannot create a scratch directory in " + base.string());
-  }
-  ~ScratchDirectory() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDirectory(const ScratchDirectory&) = delete;
-  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
-  void write(const std::string& name, const std::vector<unsigned char>& bytes) const {
-    std::ofstream out(path_ / name, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw IoError("cannot write " + (path_ / name).string());
-  }
-
- private:
-  std::filesystem::path path_;
-};
-
 // Where an imported material came from, to give the checker's findings glTF pointers.
 struct Origin {
   size_t gltf_index = 0;
@@ -125,8 +80,9 @@ struct Origin {
 
 class Importer {
  public:
-  Importer(const std::filesystem::path& path, Diagnostics& diagnostics)
-      : path_(path), file_(path.string()), diagnostics_(diagnostics) {}
+  Importer(std::string_view bytes, const std::filesystem::path& path, Diagnostics& diagnostics,
+           const AssetPolicy& policy)
+      : bytes_(bytes), path_(path), file_(path.string()), diagnostics_(diagnostics), policy_(policy) {}
 
   ImportResult run() {
     if (!load_model()) return std::move(result_);
@@ -136,15 +92,14 @@ class Importer {
     std::vector<bool> label_at(model_.materials.size());
     size_t labels = 0;
     for (size_t i = 0; i < model_.materials.size(); ++i) {
-      const tinygltf::Material& gm = model_.materials[i];
+      const GltfMaterial& gm = model_.materials[i];
       const bool label = label_at[i] = is_label(gm);
       labels += label;
-      const Json extensions = parse_object(gm.extensions_json_string);
-      for (const auto& [name, value] : extensions.items())
+      for (const auto& [name, value] : gm.extensions.items())
         (label ? label_extensions : material_extensions).insert(name);
     }
-    for (size_t i = 0; i < model_.extensionsUsed.size(); ++i) {
-      const std::string& name = model_.extensionsUsed[i];
+    for (size_t i = 0; i < model_.extensions_used.size(); ++i) {
+      const std::string& name = model_.extensions_used[i];
       if (kNotMaterialExtensions.count(name))
         result_.notes.push_back("extension '" + name + "' holds no material data; skipped");
       else if (label_extensions.count(name) && !material_extensions.count(name))
@@ -174,55 +129,16 @@ class Importer {
 
  private:
   bool load_model() {
-    const std::string text = read_input_file(path_, kMaxBinaryFileBytes);  // IoError: not a user mistake
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keep_encoded, nullptr);
-    // tinygltf drops extension values that are not objects; the original text keeps them, so a
-    // wrong type is reported rather than ignored.
-    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
-    std::string err, warn;
-    const std::string base_dir = path_.parent_path().string();
-    const bool binary = text.size() >= 4 && text.compare(0, 4, "glTF") == 0;
-    const bool ok =
-        binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(text.data()),
-                                             static_cast<unsigned int>(text.size()), base_dir)
-               : loader.LoadASCIIFromString(&model_, &err, &warn, text.data(), static_cast<unsigned int>(text.size()),
-                                            base_dir);
-    report_lines(warn, Severity::Warning);
-    report_lines(err, Severity::Error);
-    if (!ok && err.empty())
-      diagnostics_.error(file_, "",
-                         std::string("not a valid glTF 2.0 ") + (binary ? "binary (.glb)" : "JSON") + " file");
-    return ok;
-  }
-
-  // tinygltf reports one problem per line, without a JSON pointer.
-  void report_lines(const std::string& text, Severity severity) {
-    size_t start = 0;
-    while (start < text.size()) {
-      size_t end = text.find('\n', start);
-      if (end == std::string::npos) end = text.size();
-      std::string line = text.substr(start, end - start);
-      if (!line.empty()) {
-        if (severity == Severity::Error)
-          diagnostics_.error(file_, "", "glTF: " + line);
-        else
-          diagnostics_.warning(file_, "", "glTF: " + line);
-      }
-      start = end + 1;
+    try {
+      model_ = read_gltf(bytes_, path_, policy_);
+    } catch (const Error& e) {
+      for (const auto& d : e.diagnostics()) diagnostics_.error(d.file, d.pointer, d.message, d.hint);
+      return false;
     }
+    return true;
   }
 
-  // tinygltf keeps the original text of extensions and extras; it parsed, so it parses again.
-  static Json parse_object(const std::string& text) {
-    if (text.empty()) return Json::object();
-    Json j = Json::parse(text, nullptr, false);
-    return j.is_object() ? j : Json::object();
-  }
-
-  static bool is_label(const tinygltf::Material& gm) {
-    return parse_object(gm.extras_json_string).contains(kLabelExtra);
-  }
+  static bool is_label(const GltfMaterial& gm) { return gm.extras.is_object() && gm.extras.contains(kLabelExtra); }
 
   std::string unique_material_name(const std::string& wanted, size_t index) {
     std::string name = sanitise_identifier(wanted);
@@ -234,10 +150,9 @@ class Importer {
   }
 
   void import_material(size_t index) {
-    const tinygltf::Material& gm = model_.materials[index];
+    const GltfMaterial& gm = model_.materials[index];
     const std::string pointer = "/materials/" + std::to_string(index);
-    // tinygltf wrote this text from a parsed object, so it parses.
-    extensions_ = gm.extensions_json_string.empty() ? Json::object() : Json::parse(gm.extensions_json_string);
+    extensions_ = gm.extensions;
     for (const auto& [name, value] : extensions_.items()) {
       if (!kReadExtensions.count(name))
         diagnostics_.warning(file_, pointer + "/extensions/" + pointer_escape(name),
@@ -348,8 +263,9 @@ class Importer {
 
   // --- textures --------------------------------------------------------------------------------
 
-  // The image of glTF texture `texture`, with its bytes, or nullptr after an error.
-  const tinygltf::Image* image_of(int texture, const std::string& pointer) {
+  // The encoded bytes of the image of glTF texture `texture`, read and decoded once (as an image
+  // under the pixel budget: bytes that are no image are never extracted), or nullptr after an error.
+  const std::string* image_of(int texture, const std::string& pointer) {
     if (texture < 0 || static_cast<size_t>(texture) >= model_.textures.size()) {
       diagnostics_.error(file_, pointer,
                          "texture " + std::to_string(texture) + " does not exist (the file has " +
@@ -357,30 +273,44 @@ class Importer {
       return nullptr;
     }
     const int source = model_.textures[static_cast<size_t>(texture)].source;
-    if (source < 0 || static_cast<size_t>(source) >= model_.images.size()) {
-      diagnostics_.error(file_, "/textures/" + std::to_string(texture) + "/source",
-                         "expected the index of an image of the file");
+    if (source < 0) {
+      diagnostics_.error(file_, "/textures/" + std::to_string(texture), "the texture has no \"source\" image",
+                         "lamina reads textures with a source image");
       return nullptr;
     }
-    const tinygltf::Image& image = model_.images[static_cast<size_t>(source)];
-    if (image.image.empty()) {
-      diagnostics_.error(
-          file_, "/images/" + std::to_string(source),
-          "image " + (image.uri.empty() ? std::to_string(source) : "'" + image.uri + "'") + " could not be read");
-      return nullptr;
+    auto [cached, first] = images_.emplace(source, std::nullopt);
+    if (first) {
+      const std::string image_pointer = "/images/" + std::to_string(source);
+      try {
+        std::string bytes = model_.image_bytes(source);
+        decode_linear_image(bytes, image_name(size_t(source)), false, policy_.max_image_pixels);
+        cached->second = std::move(bytes);
+      } catch (const Error& e) {
+        for (const auto& d : e.diagnostics()) diagnostics_.error(d.file, d.pointer, d.message, d.hint);
+      } catch (const ImageError& e) {
+        diagnostics_.error(file_, image_pointer, std::string("the image does not decode: ") + e.what(),
+                           "lamina extracts only images it can read (PNG, JPEG, ...)");
+      }
     }
-    return &image;
+    return cached->second ? &*cached->second : nullptr;
+  }
+
+  // The image's name for messages and the decoder's guess when its bytes do not say their format.
+  std::string image_name(size_t source) const {
+    const GltfImage& image = model_.images[source];
+    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0)
+      return std::filesystem::path(uri_decode(image.uri)).filename().string();
+    return image.mime_type == "image/jpeg" ? "image.jpg" : "image.png";
   }
 
   // The extracted file name for glTF texture `texture` (its image's bytes), or "" after an error.
   std::string texture_file(int texture, const std::string& pointer, const std::string& wanted) {
-    const tinygltf::Image* found = image_of(texture, pointer);
-    if (!found) return "";
-    const tinygltf::Image& image = *found;
+    const std::string* bytes = image_of(texture, pointer);
+    if (!bytes) return "";
     const auto source = static_cast<size_t>(model_.textures[static_cast<size_t>(texture)].source);
-    std::string name = sanitise_file_name(wanted.empty() ? default_image_name(source) : wanted);
+    std::string name = sanitise_file_name(wanted.empty() ? default_image_name(source, *bytes) : wanted);
     // Keep the name truthful about the content (an exporter may have converted an EXR to PNG).
-    const std::string kind = extension_for(image.image);
+    const std::string kind = extension_for(*bytes);
     std::string ext = lowercase(std::filesystem::path(name).extension().string());
     if (ext == ".jpeg") ext = ".jpg";
     if (!kind.empty() && ext != kind) {
@@ -388,29 +318,29 @@ class Importer {
       result_.notes.push_back("image '" + name + "' holds " + kind.substr(1) + " data; extracted as '" + renamed + "'");
       name = renamed;
     }
-    return claim_file_name(name, image.image);
+    return claim_file_name(name, *bytes);
   }
 
-  std::string default_image_name(size_t source) const {
-    const tinygltf::Image& image = model_.images[source];
+  std::string default_image_name(size_t source, const std::string& bytes) const {
+    const GltfImage& image = model_.images[source];
     if (!image.name.empty()) return image.name;
     if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return uri_decode(image.uri);
-    return "image_" + std::to_string(source) + extension_for(image.image);
+    return "image_" + std::to_string(source) + extension_for(bytes);
   }
 
   // Same name and same bytes share one file; a name already taken by other bytes gets a suffix.
-  std::string claim_file_name(const std::string& name, const std::vector<unsigned char>& bytes) {
+  std::string claim_file_name(const std::string& name, const std::string& bytes) {
     const std::filesystem::path p(name);
     std::string candidate = name;
     for (int n = 2;; ++n) {
       auto it = std::find_if(result_.textures.begin(), result_.textures.end(),
                              [&](const ExtractedTexture& t) { return t.file_name == candidate; });
       if (it == result_.textures.end()) break;
-      if (it->bytes == bytes) return candidate;
+      if (it->bytes.size() == bytes.size() && std::equal(bytes.begin(), bytes.end(), it->bytes.begin()))
+        return candidate;
       candidate = p.stem().string() + "_" + std::to_string(n) + p.extension().string();
     }
-    scratch_.write(candidate, bytes);
-    result_.textures.push_back({candidate, bytes});
+    result_.textures.push_back({candidate, std::vector<unsigned char>(bytes.begin(), bytes.end())});
     return candidate;
   }
 
@@ -437,30 +367,29 @@ class Importer {
   }
 
   void import_pbr(size_t index) {
-    const tinygltf::Material& gm = model_.materials[index];
+    const GltfMaterial& gm = model_.materials[index];
     const std::string pointer = "/materials/" + std::to_string(index);
     const std::string name = unique_material_name(gm.name, index);
-    const auto& pbr_in = gm.pbrMetallicRoughness;
     std::vector<std::string>& notes = result_.notes;
     const size_t errors_before = diagnostics_.errors().size();
 
     PbrMaterial pbr;
-    for (size_t c = 0; c < 3 && c < pbr_in.baseColorFactor.size(); ++c) pbr.base_color[c] = pbr_in.baseColorFactor[c];
-    pbr.metallic = pbr_in.metallicFactor;
-    pbr.roughness = pbr_in.roughnessFactor;
+    for (size_t c = 0; c < 3; ++c) pbr.base_color[c] = gm.base_color_factor[c];
+    pbr.metallic = gm.metallic_factor;
+    pbr.roughness = gm.roughness_factor;
 
-    if (pbr_in.baseColorTexture.index >= 0) {
+    if (gm.base_color_texture.index >= 0) {
       const std::string tp = pointer + "/pbrMetallicRoughness/baseColorTexture";
-      std::string file = texture_file(pbr_in.baseColorTexture.index, tp + "/index", "");
-      if (!file.empty()) pbr.base_color_texture = PbrMaterial::Texture{file, wrap_of(pbr_in.baseColorTexture.index)};
-      if (pbr_in.baseColorTexture.texCoord != 0)
-        notes.push_back(name + ": baseColorTexture uses TEXCOORD_" + std::to_string(pbr_in.baseColorTexture.texCoord) +
+      std::string file = texture_file(gm.base_color_texture.index, tp + "/index", "");
+      if (!file.empty()) pbr.base_color_texture = PbrMaterial::Texture{file, wrap_of(gm.base_color_texture.index)};
+      if (gm.base_color_texture.tex_coord != 0)
+        notes.push_back(name + ": baseColorTexture uses TEXCOORD_" + std::to_string(gm.base_color_texture.tex_coord) +
                         "; lamina has one uv set");
       if (pbr.base_color != std::array<double, 3>{1.0, 1.0, 1.0})
         notes.push_back(name + ": baseColorFactor does not multiply the texture (lamina has no colour product node)");
     }
-    if (pbr_in.metallicRoughnessTexture.index >= 0)
-      average_metallic_roughness(pbr_in.metallicRoughnessTexture.index,
+    if (gm.metallic_roughness_texture.index >= 0)
+      average_metallic_roughness(gm.metallic_roughness_texture.index,
                                  pointer + "/pbrMetallicRoughness/metallicRoughnessTexture", name, pbr);
 
     if (const auto* ior = khr_extension(kIor, pointer)) {
@@ -497,12 +426,12 @@ class Importer {
       for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
         if (coat->contains(t)) notes.push_back(name + ": " + t + " is not imported; the factors are used");
     }
-    if (gm.normalTexture.index >= 0) notes.push_back(name + ": normalTexture is not imported");
-    if (gm.occlusionTexture.index >= 0) notes.push_back(name + ": occlusionTexture is not imported");
-    if (gm.emissiveTexture.index >= 0 ||
-        std::any_of(gm.emissiveFactor.begin(), gm.emissiveFactor.end(), [](double e) { return e != 0.0; }))
+    if (gm.normal_texture.index >= 0) notes.push_back(name + ": normalTexture is not imported");
+    if (gm.occlusion_texture.index >= 0) notes.push_back(name + ": occlusionTexture is not imported");
+    if (gm.emissive_texture.index >= 0 ||
+        std::any_of(gm.emissive_factor.begin(), gm.emissive_factor.end(), [](double e) { return e != 0.0; }))
       notes.push_back(name + ": emission is not imported (lamina materials do not emit)");
-    if (gm.alphaMode != "OPAQUE") notes.push_back(name + ": alphaMode " + gm.alphaMode + " is not imported (opaque)");
+    if (gm.alpha_mode != "OPAQUE") notes.push_back(name + ": alphaMode " + gm.alpha_mode + " is not imported (opaque)");
 
     if (diagnostics_.errors().size() != errors_before) return;
     add(layered_from_pbr(name, pbr, notes), Origin{index, false});
@@ -512,24 +441,21 @@ class Importer {
     const int sampler = model_.textures[static_cast<size_t>(texture)].sampler;
     if (sampler < 0 || static_cast<size_t>(sampler) >= model_.samplers.size()) return "repeat";
     const auto& s = model_.samplers[static_cast<size_t>(sampler)];
-    const int wrap = s.wrapS;
-    if (s.wrapT != s.wrapS) wrap_notes_.insert(texture);
-    return wrap == kWrapClamp ? "clamp" : wrap == kWrapMirror ? "mirror" : "repeat";
+    const int wrap = s.wrap_s;
+    if (s.wrap_t != s.wrap_s) wrap_notes_.insert(texture);
+    return wrap == kClampToEdge ? "clamp" : wrap == kMirroredRepeat ? "mirror" : "repeat";
   }
 
   // glTF 2.0 sec. 3.9.2: metalness is the texture's blue channel, roughness its green one, both
   // multiplying the factors. lamina cannot route one channel to a parameter, so the means are used.
   void average_metallic_roughness(int texture, const std::string& pointer, const std::string& name, PbrMaterial& pbr) {
-    const tinygltf::Image* image = image_of(texture, pointer + "/index");
+    // Decoded in memory, not extracted: no node refers to it.
+    const std::string* image = image_of(texture, pointer + "/index");
     if (!image) return;
-    // Read from the scratch directory, not extracted: no node refers to it.
-    const std::string file = ".metallic_roughness_" + std::to_string(texture) + extension_for(image->image);
-    scratch_.write(file, image->image);
+    const auto source = static_cast<size_t>(model_.textures[static_cast<size_t>(texture)].source);
     double green = 0.0, blue = 0.0;
     try {
-      auto decoded =
-          decode_linear_image(std::string_view(reinterpret_cast<const char*>(image->image.data()), image->image.size()),
-                              file, false, kDefaultMaxImagePixels);
+      auto decoded = decode_linear_image(*image, image_name(source), false, policy_.max_image_pixels);
       for (const auto& t : decoded->texels) {
         green += t.g;
         blue += t.b;
@@ -553,15 +479,24 @@ class Importer {
     origins_.push_back(origin);
   }
 
-  // --- the same checks as `lamina validate`, with the textures in the scratch directory ---------
+  // --- the same checks as `lamina validate`, with the textures in memory -------------------------
 
   void check_document() {
     for (int texture : wrap_notes_)
       result_.notes.push_back("texture " + std::to_string(texture) +
                               ": wrapT differs from wrapS; lamina wraps both ways alike (wrapS is used)");
     if (result_.document.materials.empty()) return;
-    const std::filesystem::path checked_path = scratch_.path() / "imported.json";
-    CheckedFile checked = check_text(write_document(result_.document), checked_path.string());
+    // The document and its textures as they will be written, in a folder that exists only in
+    // memory: the checks find the textures there and never look at the file system.
+    const std::filesystem::path folder = std::filesystem::absolute(path_).parent_path() / ".lamina-import";
+    auto overlay = std::make_shared<FileOverlay>();
+    for (const ExtractedTexture& t : result_.textures)
+      (*overlay)[(folder / t.file_name).lexically_normal()] = std::string(t.bytes.begin(), t.bytes.end());
+    AssetPolicy policy = policy_;
+    policy.roots = {folder};
+    policy.overlay = std::move(overlay);
+    policy.overlay_only = true;
+    CheckedFile checked = check_text(write_document(result_.document), (folder / "imported.json").string(), policy);
     auto origin_of = [&](const std::string& pointer, std::string& rest) -> const Origin* {
       if (pointer.compare(0, 11, "/materials/") != 0) return nullptr;
       size_t end = pointer.find('/', 11);
@@ -588,11 +523,13 @@ class Importer {
     for (const auto& d : checked.diagnostics.warnings()) report(d, false);
   }
 
+  std::string_view bytes_;
   std::filesystem::path path_;
   std::string file_;
   Diagnostics& diagnostics_;
-  tinygltf::Model model_;
-  ScratchDirectory scratch_;
+  AssetPolicy policy_;
+  GltfAsset model_;
+  std::map<int, std::optional<std::string>> images_;  // per image index: its bytes once read and decoded
   ImportResult result_;
   std::vector<Origin> origins_;
   std::set<std::string> names_;
@@ -602,8 +539,20 @@ class Importer {
 
 }  // namespace
 
-ImportResult import_gltf(const std::filesystem::path& path, Diagnostics& diagnostics) {
-  return Importer(path, diagnostics).run();
+ImportResult import_gltf_bytes(std::string_view bytes, const std::filesystem::path& path, Diagnostics& diagnostics,
+                               const AssetPolicy& policy) {
+  return Importer(bytes, path, diagnostics, policy.with_default_root(path)).run();
+}
+
+ImportResult import_gltf(const std::filesystem::path& path, Diagnostics& diagnostics, const AssetPolicy& policy) {
+  std::string bytes;
+  try {
+    bytes = read_input_file(path, kMaxBinaryFileBytes);  // IoError: not a user mistake
+  } catch (const Error& e) {                             // too large
+    for (const auto& d : e.diagnostics()) diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    return {};
+  }
+  return import_gltf_bytes(bytes, path, diagnostics, policy);
 }
 
 }  // namespace lamina::gltf

@@ -9,7 +9,7 @@ namespace lamina::gltf {
 
 // A relative URI reference naming the file `name` (no directories): every byte but RFC 3986's
 // unreserved characters (letters, digits, '-', '.', '_', '~') as %XX. '+' is encoded too, since
-// some readers (tinygltf 2.7) decode it as a space.
+// some readers decode it as a space (form encoding).
 std::string uri_encode(std::string_view name);
 
 // The file name a URI reference stands for: each %XX decoded, everything else kept ('+' too). A

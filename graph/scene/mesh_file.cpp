@@ -1,7 +1,5 @@
 #include "graph/scene/mesh_file.h"
 
-#include <tiny_gltf.h>
-
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -11,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "graph/gltf/gltf_read.h"
 #include "graph/json_read.h"
 #include "graph/number_text.h"
 #include "graph/scene/mesh_shading.h"
@@ -20,8 +19,6 @@ namespace lamina {
 
 namespace {
 
-// glTF 2.0 sec. 5.11.4: bufferView.byteStride is at most 252.
-constexpr size_t kMaxByteStride = 252;
 // A node transform whose determinant is this small relative to its largest axis cubed flattens
 // its meshes onto a plane or line: normals are undefined there.
 constexpr double kSingularDeterminant = 1e-12;
@@ -29,23 +26,8 @@ constexpr double kSingularDeterminant = 1e-12;
 constexpr int kUnvisited = -2;
 constexpr int kRoot = -1;
 
-// Geometry only: images are neither decoded nor checked.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
-
 std::string at(const char* array, size_t index) { return "/" + std::string(array) + "/" + std::to_string(index); }
 std::string at(const char* array, int index) { return at(array, static_cast<size_t>(index)); }
-
-std::string plural(size_t n, const std::string& one, const std::string& many = {}) {
-  return std::to_string(n) + " " + (n == 1 ? one : many.empty() ? one + "s" : many);
-}
-
-// a * b + c, or nothing when it would wrap around.
-std::optional<size_t> mul_add(size_t a, size_t b, size_t c) {
-  if (b != 0 && a > (std::numeric_limits<size_t>::max() - c) / b) return std::nullopt;
-  return a * b + c;
-}
 
 const char* type_name(int components) {
   switch (components) {
@@ -59,14 +41,17 @@ const char* type_name(int components) {
 
 class MeshLoader {
  public:
-  MeshLoader(const tinygltf::Model& model, const std::filesystem::path& path) : model_(model), file_(path.string()) {}
+  MeshLoader(const gltf::GltfAsset& model, const std::filesystem::path& path) : model_(model), file_(path.string()) {}
 
   TriangleMesh load() {
+    // An extension a file requires changes what its data means (compressed or quantised geometry).
+    for (size_t k = 0; k < model_.extensions_required.size(); ++k)
+      if (model_.extensions_required[k].rfind("KHR_materials_", 0) != 0)
+        fail("/extensionsRequired/" + std::to_string(k),
+             "the file requires the extension " + model_.extensions_required[k] + ", which lamina does not read",
+             "export the mesh without compression or quantisation");
     if (!model_.scenes.empty()) {
-      const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-      if (static_cast<size_t>(scene) >= model_.scenes.size())
-        fail("/scene", "the default scene " + std::to_string(scene) + " does not exist",
-             "the file has " + plural(model_.scenes.size(), "scene"));
+      const int scene = model_.scene >= 0 ? model_.scene : 0;
       walk_scene(static_cast<size_t>(scene));
     } else {
       for (size_t m = 0; m < model_.meshes.size(); ++m) add_mesh(m, glm::dmat4(1.0), at("meshes", m));
@@ -101,19 +86,13 @@ class MeshLoader {
     while (!stack.empty()) {  // depth first, children in order: the order a recursion would take
       Pending item = std::move(stack.back());
       stack.pop_back();
-      if (item.node < 0 || static_cast<size_t>(item.node) >= model_.nodes.size())
-        fail(item.reference, "node " + std::to_string(item.node) + " does not exist",
-             "the file has " + plural(model_.nodes.size(), "node"));
       const auto index = static_cast<size_t>(item.node);
       if (parent_of[index] != kUnvisited) fail(item.reference, second_reference(item.node, item.parent, parent_of));
       parent_of[index] = item.parent;
-      const tinygltf::Node& node = model_.nodes[index];
+      const gltf::GltfNode& node = model_.nodes[index];
       const std::string pointer = at("nodes", index);
       const glm::dmat4 world = item.parent_world * local_matrix(node, pointer);  // glTF: T * R * S
       if (node.mesh >= 0) {
-        if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
-          fail(pointer + "/mesh", "mesh " + std::to_string(node.mesh) + " does not exist",
-               "the file has " + plural(model_.meshes.size(), "mesh", "meshes"));
         // Only where it places a mesh: a collapsed node without one (a hidden helper) is harmless.
         check_transform(world, pointer);
         add_mesh(static_cast<size_t>(node.mesh), world, pointer + "/mesh");
@@ -136,21 +115,19 @@ class MeshLoader {
            "): glTF nodes form strict trees, each node with at most one parent";
   }
 
-  glm::dmat4 local_matrix(const tinygltf::Node& node, const std::string& pointer) const {
+  glm::dmat4 local_matrix(const gltf::GltfNode& node, const std::string& pointer) const {
     glm::dmat4 m(1.0);
-    if (node.matrix.size() == 16) {
-      m = glm::make_mat4(node.matrix.data());  // column-major, as glTF
+    if (node.matrix) {
+      m = glm::make_mat4(node.matrix->data());  // column-major, as glTF
     } else {
-      if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
-      if (node.rotation.size() == 4) {
-        const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-        const double length = glm::length(q);
-        if (!(length > 1e-12) || !std::isfinite(length))
-          fail(pointer + "/rotation", "the rotation quaternion has zero length or is not finite",
-               "the identity is [0, 0, 0, 1] (x, y, z, w)");
-        m *= glm::mat4_cast(q / length);
-      }
-      if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+      m = glm::translate(m, glm::make_vec3(node.translation.data()));
+      const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      const double length = glm::length(q);
+      if (!(length > 1e-12) || !std::isfinite(length))
+        fail(pointer + "/rotation", "the rotation quaternion has zero length or is not finite",
+             "the identity is [0, 0, 0, 1] (x, y, z, w)");
+      m *= glm::mat4_cast(q / length);
+      m = glm::scale(m, glm::make_vec3(node.scale.data()));
     }
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
@@ -173,95 +150,32 @@ class MeshLoader {
 
   // --- accessors -------------------------------------------------------------------------------
 
-  // Accessor `index`, referred to at `reference` as `what`, after checking that it exists, is
-  // dense and has `components` components.
-  const tinygltf::Accessor& accessor(int index, int components, const std::string& reference,
+  // Accessor `index`, referred to at `reference` as `what`, after checking that it is dense and
+  // has `components` components; its ranges the reader checked.
+  const gltf::GltfAccessor& accessor(int index, int components, const std::string& reference,
                                      const std::string& what) const {
-    if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size())
-      fail(reference, "accessor " + std::to_string(index) + " does not exist",
-           "the file has " + plural(model_.accessors.size(), "accessor"));
-    const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(index)];
+    (void)reference;
+    const gltf::GltfAccessor& a = model_.accessors[static_cast<size_t>(index)];
     const std::string pointer = at("accessors", index);
-    if (a.sparse.isSparse) fail(pointer + "/sparse", "sparse accessors are not supported", "store the values densely");
-    if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type)) != components)
+    if (a.sparse) fail(pointer + "/sparse", "sparse accessors are not supported", "store the values densely");
+    if (a.components != components || a.type.rfind("MAT", 0) == 0)
       fail(pointer + "/type", what + " must be " + type_name(components));
-    switch (a.componentType) {
-      case TINYGLTF_COMPONENT_TYPE_BYTE:
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      case TINYGLTF_COMPONENT_TYPE_SHORT:
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: break;
-      default:
-        fail(pointer + "/componentType", "unknown component type " + std::to_string(a.componentType),
-             "glTF's are 5120 to 5123, 5125 and 5126");
-    }
     return a;
   }
 
-  // Accessor `index` as accessor() checks it, and its layout against its buffer view and buffer:
-  // nothing is read or allocated for it before this says the file holds its bytes.
-  const tinygltf::Accessor& checked_accessor(int index, int components, const std::string& reference,
-                                             const std::string& what) const {
-    const tinygltf::Accessor& a = accessor(index, components, reference, what);
-    if (a.bufferView < 0) return a;  // glTF: no buffer view reads zeros
-    const std::string pointer = at("accessors", index);
-    if (static_cast<size_t>(a.bufferView) >= model_.bufferViews.size())
-      fail(pointer + "/bufferView", "buffer view " + std::to_string(a.bufferView) + " does not exist",
-           "the file has " + plural(model_.bufferViews.size(), "buffer view"));
-    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(a.bufferView)];
-    const std::string view_pointer = at("bufferViews", a.bufferView);
-    if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size())
-      fail(view_pointer + "/buffer", "buffer " + std::to_string(view.buffer) + " does not exist",
-           "the file has " + plural(model_.buffers.size(), "buffer"));
-    const size_t buffer_size = model_.buffers[static_cast<size_t>(view.buffer)].data.size();
-    const auto view_end = mul_add(1, view.byteOffset, view.byteLength);
-    if (!view_end || *view_end > buffer_size)
-      fail(view_pointer + "/byteLength", "buffer view " + std::to_string(a.bufferView) +
-                                             " ends beyond its buffer, which holds " + plural(buffer_size, "byte"));
-    const size_t element_size = element_bytes(a, components);
-    const size_t stride = stride_of(a, view, components);
-    if (stride < element_size || stride > kMaxByteStride || stride % component_bytes(a) != 0)
-      fail(view_pointer + "/byteStride",
-           "byteStride " + std::to_string(stride) + " does not fit " + what + " elements of " +
-               plural(element_size, "byte"),
-           "a stride is a multiple of the component size, at least one element and at most 252");
-    if (a.count > 0) {
-      const auto needed = mul_add(a.count - 1, stride, element_size);
-      const auto end = needed ? mul_add(1, a.byteOffset, *needed) : std::nullopt;
-      if (!end || *end > view.byteLength)
-        fail(pointer + "/count", "count = " + std::to_string(a.count) + " elements of " + plural(element_size, "byte") +
-                                     " from byte " + std::to_string(a.byteOffset) + " reach beyond buffer view " +
-                                     std::to_string(a.bufferView) + ", which holds " + plural(view.byteLength, "byte"));
-    }
-    return a;
-  }
-
-  static size_t component_bytes(const tinygltf::Accessor& a) {
-    return static_cast<size_t>(tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType)));
-  }
-  static size_t element_bytes(const tinygltf::Accessor& a, int components) {
-    return component_bytes(a) * static_cast<size_t>(components);
-  }
-  static size_t stride_of(const tinygltf::Accessor& a, const tinygltf::BufferView& view, int components) {
-    return view.byteStride != 0 ? view.byteStride : element_bytes(a, components);
-  }
-
-  // The elements of an accessor checked_accessor() passed, as doubles, normalised integers mapped
-  // as the glTF 2.0 specification's "Accessor data types" section says.
+  // The elements of accessor `index`, as doubles, normalised integers mapped as the glTF 2.0
+  // specification's "Accessor data types" section says.
   std::vector<double> read_accessor(int index, int components, const std::string& what) const {
-    const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(index)];
+    const gltf::GltfAccessor& a = model_.accessors[static_cast<size_t>(index)];
     const auto n = static_cast<size_t>(components);
-    if (a.bufferView < 0) return std::vector<double>(a.count * n, 0.0);
-    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(a.bufferView)];
-    const size_t size = component_bytes(a), stride = stride_of(a, view, components);
-    const unsigned char* data =
-        model_.buffers[static_cast<size_t>(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+    const gltf::GltfAccessorData data = model_.accessor_data(index);
+    if (!data.data) return std::vector<double>(a.count * n, 0.0);
+    const size_t size = gltf::component_size(a.component_type);
     std::vector<double> out(a.count * n);
     for (size_t i = 0; i < a.count; ++i) {
-      const unsigned char* element = data + i * stride;
+      const unsigned char* element = data.data + i * data.stride;
       for (size_t c = 0; c < n; ++c) {
-        const double v = component(element + c * size, a.componentType, a.normalized);
+        const double v = component(element + c * size, a.component_type, a.normalized);
         if (!std::isfinite(v))
           fail(at("accessors", index), "element " + std::to_string(i) + " of " + what + " is not a finite number");
         out[i * n + c] = v;
@@ -279,32 +193,29 @@ class MeshLoader {
 
   static double component(const unsigned char* p, int type, bool normalized) {
     switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load_as<uint8_t>(p) / (normalized ? 255.0 : 1.0);
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load_as<uint16_t>(p) / (normalized ? 65535.0 : 1.0);
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load_as<uint32_t>(p);
-      case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return normalized ? std::max(load_as<int8_t>(p) / 127.0, -1.0) : load_as<int8_t>(p);
-      case TINYGLTF_COMPONENT_TYPE_SHORT:
-        return normalized ? std::max(load_as<int16_t>(p) / 32767.0, -1.0) : load_as<int16_t>(p);
-      default: return load_as<float>(p);  // TINYGLTF_COMPONENT_TYPE_FLOAT; accessor() admits no other type
+      case gltf::kUnsignedByte: return load_as<uint8_t>(p) / (normalized ? 255.0 : 1.0);
+      case gltf::kUnsignedShort: return load_as<uint16_t>(p) / (normalized ? 65535.0 : 1.0);
+      case gltf::kUnsignedInt: return load_as<uint32_t>(p);
+      case gltf::kByte: return normalized ? std::max(load_as<int8_t>(p) / 127.0, -1.0) : load_as<int8_t>(p);
+      case gltf::kShort: return normalized ? std::max(load_as<int16_t>(p) / 32767.0, -1.0) : load_as<int16_t>(p);
+      default: return load_as<float>(p);  // kFloat; the reader admits no other type
     }
   }
 
   static bool is_triangles(int mode) {
-    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
-           mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    return mode == gltf::kModeTriangles || mode == gltf::kModeTriangleStrip || mode == gltf::kModeTriangleFan;
   }
 
   static std::vector<uint32_t> triangles(int mode, const std::vector<uint32_t>& v) {
     std::vector<uint32_t> out;
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (mode == gltf::kModeTriangles) {
       out.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 3 * 3));
-    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    } else if (mode == gltf::kModeTriangleStrip) {
       // glTF 2.0 "Meshes: topology": odd triangles swap two vertices to keep the winding.
       for (size_t i = 0; i + 2 < v.size(); ++i)
         out.insert(out.end(), i % 2 ? std::initializer_list<uint32_t>{v[i + 1], v[i], v[i + 2]}
                                     : std::initializer_list<uint32_t>{v[i], v[i + 1], v[i + 2]});
-    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    } else if (mode == gltf::kModeTriangleFan) {
       for (size_t i = 1; i + 1 < v.size(); ++i) out.insert(out.end(), {v[i], v[i + 1], v[0]});
     }
     return out;
@@ -314,7 +225,7 @@ class MeshLoader {
 
   // The triangles `count` vertex references make in `mode` (glTF 2.0 "Meshes: topology").
   static size_t triangle_count(int mode, size_t count) {
-    if (mode == TINYGLTF_MODE_TRIANGLES) return count / 3;
+    if (mode == gltf::kModeTriangles) return count / 3;
     return count >= 3 ? count - 2 : 0;  // strips and fans
   }
 
@@ -331,12 +242,12 @@ class MeshLoader {
   // One instance of mesh `index` under `world`; `reference` is where the file places it (the
   // node's "mesh", or the mesh itself for files without scenes), for the limits' errors.
   void add_mesh(size_t index, const glm::dmat4& world, const std::string& reference) {
-    const tinygltf::Mesh& mesh = model_.meshes[index];
+    const gltf::GltfMesh& mesh = model_.meshes[index];
     const glm::dmat3 linear(world);
     const glm::dmat3 normal_matrix = glm::inverseTranspose(linear);
     const bool mirrored = glm::determinant(linear) < 0.0;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const tinygltf::Primitive& primitive = mesh.primitives[p];
+      const gltf::GltfPrimitive& primitive = mesh.primitives[p];
       const std::string prim = at("meshes", index) + "/primitives/" + std::to_string(p);
       auto position = primitive.attributes.find("POSITION");
       // Points and lines have no surface; glTF says to skip primitives without positions.
@@ -345,7 +256,7 @@ class MeshLoader {
         fail(reference, "this instance takes the file beyond " + std::to_string(kMaxMeshPrimitives) +
                             " triangle primitives over all instances of its meshes, more than lamina reads");
       const std::string position_reference = prim + "/attributes/POSITION";
-      const size_t count = checked_accessor(position->second, 3, position_reference, "POSITION").count;
+      const size_t count = accessor(position->second, 3, position_reference, "POSITION").count;
       if (count > kMaxMeshVertices - vertices_)
         fail(vertices_ == 0 ? at("accessors", position->second) + "/count" : reference,
              "the file's meshes, over all their instances, have more than " + std::to_string(kMaxMeshVertices) +
@@ -356,10 +267,9 @@ class MeshLoader {
       std::vector<uint32_t> order;
       if (primitive.indices >= 0) {
         const std::string indices_reference = prim + "/indices";
-        const tinygltf::Accessor& a = checked_accessor(primitive.indices, 1, indices_reference, "indices");
-        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        const gltf::GltfAccessor& a = accessor(primitive.indices, 1, indices_reference, "indices");
+        if (a.component_type != gltf::kUnsignedByte && a.component_type != gltf::kUnsignedShort &&
+            a.component_type != gltf::kUnsignedInt)
           fail(at("accessors", primitive.indices) + "/componentType", "indices must be unsigned integers",
                "5121 (byte), 5123 (short) or 5125 (int)");
         check_triangle_budget(primitive.mode, a.count, reference, at("accessors", primitive.indices) + "/count");
@@ -384,7 +294,7 @@ class MeshLoader {
         auto it = primitive.attributes.find(name);
         if (it == primitive.attributes.end()) return std::vector<double>();
         const std::string attribute_reference = prim + "/attributes/" + name;
-        const size_t n = checked_accessor(it->second, components, attribute_reference, name).count;
+        const size_t n = accessor(it->second, components, attribute_reference, name).count;
         if (n != count)
           fail(attribute_reference,
                std::string(name) + " has " + std::to_string(n) + " elements, POSITION " + std::to_string(count),
@@ -446,7 +356,7 @@ class MeshLoader {
     for (uint32_t i : piece.indices) mesh_.indices.push_back(base + i);
   }
 
-  const tinygltf::Model& model_;
+  const gltf::GltfAsset& model_;
   std::string file_;
   TriangleMesh mesh_;
   size_t vertices_ = 0, triangles_ = 0, primitives_ = 0;  // over every instance so far
@@ -454,35 +364,17 @@ class MeshLoader {
 
 }  // namespace
 
-namespace {
-
-TriangleMesh load_mesh_bytes(const std::string& bytes, const std::filesystem::path& path) {
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
-  tinygltf::Model model;
-  std::string error, warning;
-  const bool binary = bytes.compare(0, 4, "glTF") == 0;
-  const std::string base = path.parent_path().string();
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                                 reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                 static_cast<unsigned>(bytes.size()), base)
-                   : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(),
-                                                static_cast<unsigned>(bytes.size()), base);
-  if (!ok) {
-    while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
-    throw IoError(path.string() + ": cannot read glTF: " + (error.empty() ? "unknown error" : error));
-  }
-  return MeshLoader(model, path).load();
+TriangleMesh load_mesh_bytes(std::string_view bytes, const std::filesystem::path& path, const AssetPolicy& policy) {
+  const gltf::GltfAsset asset = gltf::read_gltf(bytes, path, policy);
+  return MeshLoader(asset, path).load();
 }
 
-}  // namespace
-
 TriangleMesh load_mesh_file(const Reference& file, const AssetPolicy& policy) {
-  return load_mesh_bytes(read_reference(file, kMaxBinaryFileBytes, policy), file.path);
+  return load_mesh_bytes(read_reference(file, kMaxBinaryFileBytes, policy), file.path, policy);
 }
 
 TriangleMesh load_mesh_file(const std::filesystem::path& path) {
-  return load_mesh_bytes(read_input_file(path, kMaxBinaryFileBytes), path);
+  return load_mesh_bytes(read_input_file(path, kMaxBinaryFileBytes), path, AssetPolicy{}.with_default_root(path));
 }
 
 }  // namespace lamina

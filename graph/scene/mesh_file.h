@@ -1,8 +1,9 @@
-// Triangle meshes from glTF 2.0 files (.gltf or .glb), through Debian's shared tinygltf.
+// Triangle meshes from glTF 2.0 files (.gltf or .glb), read by graph/gltf/gltf_read.h.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
+#include <string_view>
 
 #include "graph/scene/scene.h"
 
@@ -20,15 +21,19 @@ inline constexpr size_t kMaxMeshPrimitives = size_t{1} << 16;  // primitive inst
 // normals with the inverse transpose. Missing normals and tangents are generated
 // (mesh_shading.h), missing uvs are (0, 0).
 //
-// Throws IoError when the file cannot be read or tinygltf cannot parse it. Throws lamina::Error for
-// content lamina cannot use, each problem with the mesh file and the glTF JSON pointer of the
+// Read through graph/gltf/gltf_read.h: throws ReferenceError when the file cannot be followed or
+// read, and lamina::Error for every problem of the file itself (container, JSON, ranges, buffers)
+// and for content lamina cannot use, each problem with the mesh file and the glTF JSON pointer of the
 // offending value ("" for the file as a whole: no triangles): indices, accessors or buffer views
 // out of range, accessors reading beyond their buffer, wrong types, values that are not finite,
 // node hierarchies that are not strict trees (cycles, nodes with two parents), transforms that
 // collapse a mesh, and files beyond the limits above. Nothing is allocated before it is checked
 // against the file's own sizes and these limits.
 TriangleMesh load_mesh_file(const Reference& file, const AssetPolicy& policy);
-// A mesh file named directly (on the command line, or by a program): read as an input file.
+// A mesh file named directly (on the command line, or by a program): read as an input file
+// (IoError when it cannot be), its buffers in its folder.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
+// The mesh of `bytes`, the content of `path` (whose folder its buffers are looked up in).
+TriangleMesh load_mesh_bytes(std::string_view bytes, const std::filesystem::path& path, const AssetPolicy& policy);
 
 }  // namespace lamina

@@ -245,7 +245,7 @@ TEST_CASE("import: broken glTF files give errors with the file and the glTF poin
                 "out of range"},
            Case{"bad/texture_out_of_range.gltf",
                 "/materials/1/extensions/LAMINA_materials_layered/textures/patina/index", "does not exist"},
-           Case{"bad/truncated.glb", "", "glTF"},
+           Case{"bad/truncated.glb", "", "not a valid .glb: the header says the file has"},
        }) {
     const std::string file = c.file;
     CAPTURE(file);

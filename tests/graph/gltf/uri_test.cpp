@@ -7,7 +7,7 @@ using namespace lamina::gltf;
 TEST_CASE("uri_encode keeps RFC 3986's unreserved characters and percent-encodes every other byte") {
   CHECK(uri_encode("car_paint-2.v1~.bin") == "car_paint-2.v1~.bin");
   CHECK(uri_encode("my scene#1%.bin") == "my%20scene%231%25.bin");
-  // '+' too: tinygltf 2.7 decodes a literal '+' as a space.
+  // '+' too: some readers decode a literal '+' as a space (form encoding).
   CHECK(uri_encode("a+b.bin") == "a%2Bb.bin");
   // UTF-8 bytes one by one (U+00FC, u with diaeresis, is C3 BC).
   CHECK(uri_encode("m\xc3\xbcller.bin") == "m%C3%BCller.bin");
