@@ -59,17 +59,19 @@ TempDir::~TempDir() {
 
 namespace {
 
-RunResult run(const std::string& prefix, const std::string& args, const std::filesystem::path& working_dir) {
+RunResult run(const std::string& prefix, const std::string& args, const std::filesystem::path& working_dir,
+              const std::string& stdout_to = {}) {
   TempDir capture;
   auto out = capture.path() / "out.txt";
   auto err = capture.path() / "err.txt";
   std::string command;
   if (!working_dir.empty()) command = "cd '" + working_dir.string() + "' && ";
-  command += prefix + "'" + LAMINA_CLI + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  command += prefix + "'" + LAMINA_CLI + "' " + args + " >'" + (stdout_to.empty() ? out.string() : stdout_to) +
+             "' 2>'" + err.string() + "'";
   int status = std::system(command.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
+  if (stdout_to.empty()) r.out = read_file(out);
   r.err = read_file(err);
   return r;
 }
@@ -82,6 +84,11 @@ RunResult run_cli(const std::string& args, const std::filesystem::path& working_
 
 RunResult run_cli_within(int seconds, const std::string& args, const std::filesystem::path& working_dir) {
   return run("timeout --kill-after=5 " + std::to_string(seconds) + " ", args, working_dir);
+}
+
+RunResult run_cli_wrapped(const std::string& wrapper, const std::string& args, const std::filesystem::path& working_dir,
+                          const std::string& stdout_to) {
+  return run(wrapper + " ", args, working_dir, stdout_to);
 }
 
 }  // namespace lamina::test

@@ -25,6 +25,10 @@ struct RunResult {
 RunResult run_cli(const std::string& args, const std::filesystem::path& working_dir = {});
 // As run_cli, killed after `seconds` (exit code 124 then): for inputs that once made lamina hang.
 RunResult run_cli_within(int seconds, const std::string& args, const std::filesystem::path& working_dir = {});
+// As run_cli, the CLI started by `wrapper` (a command such as "prlimit --fsize=4096"), and the
+// standard output redirected to `stdout_to` instead of captured when it is not empty.
+RunResult run_cli_wrapped(const std::string& wrapper, const std::string& args, const std::filesystem::path& working_dir,
+                          const std::string& stdout_to = {});
 
 // Every file and directory under `dir`, as paths relative to it, sorted.
 std::vector<std::string> listing(const std::filesystem::path& dir);

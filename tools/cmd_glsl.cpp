@@ -33,7 +33,7 @@ int run_glsl(const GlslOptions& o) {
   glsl::Options options;
   // The generator's table of targets is the only list of them: no second one in the parser.
   if (!glsl::parse_target(o.target, options.target)) {
-    std::cerr << "lamina: glsl: --target: '" << o.target << "' is not a target (330, 450 or es300)\n";
+    print_problem("glsl: --target: '" + o.target + "' is not a target (330, 450 or es300)");
     return kExitInvalid;
   }
   const bool to_stdout = o.output == "-";
@@ -48,8 +48,7 @@ int run_glsl(const GlslOptions& o) {
     return kExitInvalid;
   }
   if (!side.empty() && !to_stdout && side.lexically_normal() == fs::path(o.output).lexically_normal()) {
-    std::cerr << "lamina: glsl: --interface names the GLSL output " << o.output
-              << "; give the side file its own name\n";
+    print_problem("glsl: --interface names the GLSL output " + o.output + "; give the side file its own name");
     return kExitInvalid;
   }
 
@@ -61,15 +60,15 @@ int run_glsl(const GlslOptions& o) {
   try {
     module = glsl::generate(programs, options);
   } catch (const std::invalid_argument& e) {
-    std::cerr << "lamina: " << o.material.file << ": " << e.what() << "\n";
+    print_problem(o.material.file + ": " + e.what());
     return kExitInvalid;
   }
 
   std::vector<OutputFile> files;
   if (!to_stdout) files.push_back({o.output, module.source});
   if (!side.empty()) files.push_back({side, glsl::interface_json(module, options)});
-  if (!write_files(files)) return kExitIo;
-  if (to_stdout) std::cout << module.source;
+  if (int code = write_outputs(files); code != kExitOk) return code;
+  if (to_stdout) write_standard_output(module.source);
   return kExitOk;
 }
 
@@ -80,6 +79,7 @@ void add_glsl(CLI::App& app, Runner& runner) {
   auto* cmd = app.add_subcommand("glsl", "Compile materials to a GLSL module (eval, pdf and sample per material)");
   cmd->add_option("file", o->material.file, "a material file")->required();
   cmd->add_option("-m,--material", o->material.material, "only this material (default: every material in the file)");
+  add_input_options(*cmd, o->material.input_options);
   cmd->add_option("-t,--target", o->target, "GLSL flavour: 330 (3.30 core), 450 (4.50 core), es300 (ES 3.00, WebGL2)")
       ->capture_default_str();
   cmd->add_flag("--uniforms", o->uniforms,

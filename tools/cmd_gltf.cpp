@@ -56,7 +56,7 @@ void print_report(const gltf::Export& result) {
 int run_gltf(const GltfOptions& o) {
   const std::filesystem::path output(o.output);
   if (output.extension() != ".gltf" && output.extension() != ".glb") {
-    std::cerr << "lamina: -o: '" << o.output << "' must end in .gltf or .glb (the extension picks the container)\n";
+    print_problem("-o: '" + o.output + "' must end in .gltf or .glb (the extension picks the container)");
     return kExitInvalid;
   }
   if (o.bake_size < 1 || o.bake_size > 4096) {
@@ -83,7 +83,7 @@ int run_gltf(const GltfOptions& o) {
       if (checked.ok()) scene = sample_sheet(checked.document, input, o.columns);
     }
   } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
+    print_problem(e.what());
     return kExitIo;
   }
   if (!print_diagnostics(diagnostics)) return kExitInvalid;
@@ -94,20 +94,20 @@ int run_gltf(const GltfOptions& o) {
   try {
     result = gltf::export_scene(scene, output, options);
   } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
+    print_problem(e.what());
     return kExitIo;
   } catch (const Error& e) {
     for (const auto& d : e.diagnostics()) std::cerr << format(d) << "\n";
     return kExitInvalid;
   }
-  for (const auto& note : result.notes) std::cerr << "lamina: note: " << note << "\n";
+  for (const auto& note : result.notes) print_problem("note: " + note);
   // The side files first, so that the .gltf never names a buffer that is not there.
   std::vector<OutputFile> files;
   for (auto it = result.files.rbegin(); it != result.files.rend(); ++it)
     files.push_back({it->path, std::string(it->bytes.begin(), it->bytes.end())});
-  if (!write_files(files)) return kExitIo;
+  if (int code = write_outputs(files); code != kExitOk) return code;
   if (o.report) print_report(result);
-  std::cout << "wrote " << output.string() << " (" << scene.objects.size() << " object"
+  std::cout << "wrote " << printable(output.string()) << " (" << scene.objects.size() << " object"
             << (scene.objects.size() == 1 ? "" : "s") << ", " << result.materials.size() << " material"
             << (result.materials.size() == 1 ? "" : "s") << ")\n";
   return kExitOk;

@@ -15,6 +15,7 @@ struct ImportOptions {
   std::string input;
   std::string output;
   bool force = false;
+  InputOptions input_options;
 };
 
 // Read directly, not through file_access.h: a file about to be replaced is no input.
@@ -32,9 +33,9 @@ int run_import(const ImportOptions& o) {
   Diagnostics diagnostics;
   gltf::ImportResult result;
   try {
-    result = gltf::import_gltf(o.input, diagnostics);
+    result = gltf::import_gltf(o.input, diagnostics, o.input_options.policy_for(o.input));
   } catch (const IoError& e) {
-    std::cerr << "lamina: " << e.what() << "\n";
+    print_problem(e.what());
     return kExitIo;
   }
   if (!print_diagnostics(diagnostics)) return kExitInvalid;
@@ -42,12 +43,6 @@ int run_import(const ImportOptions& o) {
   // Refuse to replace files unless asked; a texture identical to the one there is no conflict.
   const std::filesystem::path directory = output.parent_path().empty() ? "." : output.parent_path();
   std::error_code ec;
-  // A missing output directory is made (the input checked, so nothing is written for bad input).
-  if (!std::filesystem::exists(directory, ec)) std::filesystem::create_directories(directory, ec);
-  if (!std::filesystem::is_directory(directory, ec)) {
-    std::cerr << "lamina: cannot write " << o.output << ": " << directory.string() << " is not a directory\n";
-    return kExitIo;
-  }
   if (!o.force) {
     std::vector<std::string> existing;
     if (std::filesystem::exists(output, ec)) existing.push_back(output.string());
@@ -55,17 +50,41 @@ int run_import(const ImportOptions& o) {
       if (std::filesystem::exists(directory / t.file_name, ec) && !same_bytes(directory / t.file_name, t.bytes))
         existing.push_back((directory / t.file_name).string());
     if (!existing.empty()) {
-      for (const auto& f : existing) std::cerr << "lamina: " << f << " exists; use --force to replace it\n";
+      for (const auto& f : existing) print_problem(f + " exists; use --force to replace it");
       return kExitInvalid;
     }
   }
+  // A missing output folder is made now, the input checked; taken back if the write fails.
+  std::filesystem::path made;  // the outermost folder made
+  for (std::filesystem::path p = directory; !p.empty() && !std::filesystem::exists(p, ec); p = p.parent_path()) {
+    made = p;
+    if (p == p.parent_path()) break;
+  }
+  if (!made.empty() && !std::filesystem::create_directories(directory, ec)) {
+    print_problem("cannot write " + o.output + ": cannot make the folder " + directory.string() + ": " + ec.message());
+    return kExitIo;
+  }
+  // The textures first, so that the material file never names one that is not there; all of them
+  // together or none.
+  // A texture already there with the same bytes (importing next to the glTF file's own images)
+  // is left as it is.
+  std::vector<OutputFile> files;
   for (const auto& t : result.textures)
-    if (!write_file(directory / t.file_name, std::string(t.bytes.begin(), t.bytes.end()))) return kExitIo;
-  if (!write_file(output, write_document(result.document))) return kExitIo;
+    if (!same_bytes(directory / t.file_name, t.bytes))
+      files.push_back({directory / t.file_name, std::string(t.bytes.begin(), t.bytes.end())});
+  files.push_back({output, write_document(result.document)});
+  if (int code = write_outputs(files); code != kExitOk) {
+    // Only the folders this call made, and only if they are empty (remove() leaves others alone).
+    for (std::filesystem::path p = directory; !made.empty(); p = p.parent_path()) {
+      std::filesystem::remove(p, ec);
+      if (p == made || p == p.parent_path()) break;
+    }
+    return code;
+  }
 
-  for (const auto& note : result.notes) std::cout << "note: " << note << "\n";
+  for (const auto& note : result.notes) std::cout << "note: " << printable(note) << "\n";
   const size_t m = result.document.materials.size(), t = result.textures.size(), w = diagnostics.warnings().size();
-  std::cout << o.output << ": " << m << " material" << (m == 1 ? "" : "s") << ", " << t << " texture"
+  std::cout << printable(o.output) << ": " << m << " material" << (m == 1 ? "" : "s") << ", " << t << " texture"
             << (t == 1 ? "" : "s") << " extracted, " << w << " warning" << (w == 1 ? "" : "s") << "\n";
   return kExitOk;
 }
@@ -78,6 +97,7 @@ void add_import(CLI::App& app, Runner& runner) {
   cmd->add_option("input", o->input, "a .gltf (with its buffers and images) or .glb file")->required();
   cmd->add_option("-o,--output", o->output, "the lamina material file to write; textures go next to it")->required();
   cmd->add_flag("--force", o->force, "replace OUT and textures that already exist");
+  add_input_options(*cmd, o->input_options);
   cmd->footer(
       "Materials with LAMINA_materials_layered come back exactly; others are approximated from core "
       "metallic-roughness, KHR_materials_ior, _specular and _clearcoat (the approximations are printed as notes); "

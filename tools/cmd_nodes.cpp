@@ -25,9 +25,9 @@ int run_nodes(const NodesOptions& o) {
     const NodeDecl* decl = registry.find(o.type);
     if (!decl) {
       std::string suggestion = closest_match(o.type, registry.type_names());
-      std::cerr << "lamina: unknown node type '" << o.type << "'"
-                << (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)") << "\n"
-                << "valid types: " << join_alternatives(registry.type_names()) << "\n";
+      print_problem("unknown node type '" + o.type + "'" +
+                    (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)"));
+      std::cerr << "valid types: " << join_alternatives(registry.type_names()) << "\n";
       return kExitInvalid;
     }
     std::cout << node_reference_text(*decl);

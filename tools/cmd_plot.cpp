@@ -4,6 +4,7 @@
 // Deterministic for the same input.
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -491,13 +492,8 @@ int run_plot(const PlotOptions& o) {
   if (!format.empty()) format.erase(0, 1);
   std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (format.empty() || !OIIO::ImageOutput::create(format)) {
-    std::cerr << "lamina: -o: cannot tell an image format from '" << o.output << "' (name the file e.g. plot.png)\n";
+    print_problem("-o: cannot tell an image format from '" + o.output + "' (name the file e.g. plot.png)");
     return kExitInvalid;
-  }
-  std::error_code ec;
-  if (output.has_parent_path() && !fs::is_directory(output.parent_path(), ec)) {
-    std::cerr << "lamina: " << o.output << ": cannot write: no directory " << output.parent_path().string() << "\n";
-    return kExitIo;
   }
   Fonts fonts{find_font(false), find_font(true)};
   if (fonts.regular.empty()) fonts.regular = "DejaVuSans";  // let OpenImageIO search its font path
@@ -516,26 +512,21 @@ int run_plot(const PlotOptions& o) {
   bool text_ok = true;
   draw_figure(image, *evaluator, o.material.file, fonts, vec2((*uv)[0], (*uv)[1]), o.ambient, text_ok);
   if (!text_ok) {
-    std::cerr << "lamina: cannot draw the labels with " << fonts.regular << ": " << image.geterror() << "\n";
+    print_problem("cannot draw the labels with " + fonts.regular + ": " + image.geterror());
     return kExitIo;
   }
   image.specmod().attribute("oiio:ColorSpace", "sRGB");
   image.specmod().attribute("ImageDescription", "lamina plot of " + evaluator->program().name);
 
-  // Write next to the destination, then rename: a reader never sees half a file.
-  fs::path temp = output;
-  temp.replace_filename("." + output.filename().string() + ".tmp" + std::to_string(getpid()));
-  if (!image.write(temp.string(), OIIO::TypeDesc::UINT8, format)) {
-    std::cerr << "lamina: " << o.output << ": cannot write: " << image.geterror() << "\n";
-    fs::remove(temp, ec);
+  // Encoded in memory, then written by the one writer: complete or absent, never over an input.
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput proxy(encoded);
+  image.set_write_ioproxy(&proxy);
+  if (!image.write("plot." + format, OIIO::TypeDesc::UINT8, format)) {
+    print_problem("cannot encode " + o.output + ": " + image.geterror());
     return kExitIo;
   }
-  fs::rename(temp, output, ec);
-  if (ec) {
-    std::cerr << "lamina: " << o.output << ": cannot write: " << ec.message() << "\n";
-    fs::remove(temp, ec);
-    return kExitIo;
-  }
+  if (int code = write_outputs({{output, std::string(encoded.begin(), encoded.end())}}); code != kExitOk) return code;
   return kExitOk;
 }
 

@@ -18,12 +18,14 @@ int run_schema(const SchemaOptions& o) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) {
-    std::cerr << "lamina: cannot create " << dir.string() << ": " << ec.message() << "\n";
+    print_problem("cannot create " + dir.string() + ": " + ec.message());
     return kExitIo;
   }
-  if (!write_file(dir / "material.schema.json", material_schema())) return kExitIo;
-  if (!write_file(dir / "scene.schema.json", scene_schema())) return kExitIo;
-  if (!write_file(dir / "nodes.md", node_reference_markdown())) return kExitIo;
+  if (int code = write_outputs({{dir / "material.schema.json", material_schema()},
+                                {dir / "scene.schema.json", scene_schema()},
+                                {dir / "nodes.md", node_reference_markdown()}});
+      code != kExitOk)
+    return code;
   std::cout << "wrote " << (dir / "material.schema.json").string() << ", " << (dir / "scene.schema.json").string()
             << " and " << (dir / "nodes.md").string() << "\n";
   return kExitOk;

@@ -10,6 +10,7 @@
 #include <vector>
 #include "graph/file_access.h"
 #include "graph/load.h"
+#include "tools/output.h"
 
 namespace lamina::cli {
 
@@ -66,17 +67,5 @@ void print_problem(std::string_view text);
 // Prints errors, then warnings, as "file:pointer: message" lines on stderr; returns whether there
 // was no error.
 bool print_diagnostics(const Diagnostics& diagnostics);
-
-struct OutputFile {
-  std::filesystem::path path;
-  std::string text;
-};
-
-// Writes the files together: each through a temporary file beside it, then all renamed into place
-// in the given order, so that a failure leaves no temporary file, no half file, and none of the
-// files this call had already put in place. On failure prints "lamina: cannot write ..." and
-// returns false.
-bool write_files(const std::vector<OutputFile>& files);
-bool write_file(const std::filesystem::path& path, const std::string& text);  // write_files of one
 
 }  // namespace lamina::cli

@@ -1,6 +1,7 @@
 #include <embree3/rtcore_config.h>
 
 #include <OpenImageIO/oiioversion.h>
+#include <csignal>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -27,8 +28,8 @@ bool unknown_command(const CLI::App& app, int argc, char** argv) {
   std::string word = argv[1];
   if (std::find(names.begin(), names.end(), word) != names.end()) return false;
   std::string hint = lamina::closest_match(word, names);
-  std::cerr << "lamina: unknown command '" << word << "'" << (hint.empty() ? "" : "; did you mean '" + hint + "'?")
-            << "\ncommands:";
+  lamina::cli::print_problem("unknown command '" + word + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+  std::cerr << "commands:";
   for (const auto& n : names) std::cerr << " " << n;
   std::cerr << "\nRun lamina --help for more information.\n";
   return true;
@@ -38,6 +39,9 @@ bool unknown_command(const CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace lamina::cli;
+  // A file size limit (ulimit -f) makes writes fail with EFBIG, reported like any write error,
+  // rather than kill the process half way through an output.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"lamina: physically plausible layered materials", "lamina"};
   app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
@@ -65,10 +69,14 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitInvalid;  // a wrong command line is a user mistake
   }
+  int code = kExitInvalid;
   try {
-    return runner ? runner() : kExitInvalid;
+    if (runner) code = runner();
   } catch (const std::exception& e) {
-    std::cerr << "lamina: internal error: " << e.what() << "\n";
-    return kExitIo;
+    print_problem(std::string("internal error: ") + e.what());
+    code = kExitIo;
   }
+  // What was printed must have arrived: a full disk or a closed pipe is an I/O error.
+  if (const int output = finish_standard_output(); output != kExitOk && code == kExitOk) code = output;
+  return code;
 }

@@ -98,8 +98,8 @@ std::optional<std::vector<float>> parse_numbers(std::string_view option, std::st
   static const char* const kShapes[] = {"", "X", "U,V", "X,Y,Z"};
   std::string shape = count < 4 ? kShapes[count] : std::to_string(count) + " numbers";
   auto fail = [&](const std::string& why) {
-    std::cerr << "lamina: " << option << ": " << why << " (write " << shape << ", e.g. "
-              << (count == 2 ? "0.5,0.5" : "0.3,0,1") << ")\n";
+    print_problem(std::string(option) + ": " + why + " (write " + shape + ", e.g. " +
+                  (count == 2 ? "0.5,0.5" : "0.3,0,1") + ")");
     return std::nullopt;
   };
   std::vector<float> values;
@@ -144,8 +144,8 @@ std::optional<glm::vec3> parse_direction(std::string_view option, std::string_vi
   glm::vec3 v((*numbers)[0], (*numbers)[1], (*numbers)[2]);
   float largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   if (largest == 0.0f) {
-    std::cerr << "lamina: " << option << ": the zero vector '" << text << "' has no direction (give X,Y,Z with z "
-              << "along the normal, e.g. 0,0,1)\n";
+    print_problem(std::string(option) + ": the zero vector '" + std::string(text) +
+                  "' has no direction (give X,Y,Z with z along the normal, e.g. 0,0,1)");
     return std::nullopt;
   }
   float length_squared = glm::dot(v, v);
