@@ -103,7 +103,7 @@ TEST_CASE("lamina import never replaces an input, and leaves the glTF file's own
   CHECK(test::read_file(p / "m.json").find("\"file\": \"texture.png\"") != std::string::npos);
 }
 
-TEST_CASE("a symbolic link as output is written through and stays a link; /dev/null is written in place") {
+TEST_CASE("a symbolic link as output is written through and stays a link, and /dev/null is written in place") {
   test::TempDir dir;
   const fs::path p = project(dir);
   fs::create_directories(p / "real");
