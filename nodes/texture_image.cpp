@@ -21,7 +21,7 @@ static void check_image(const NodeCheckContext& ctx) {
     ctx.error("file", std::string("texture file ") + e.what(), e.hint());
   } catch (const ImageError& e) {
     ctx.error("file", "texture file '" + name + "' is not a readable image: " + e.what(),
-              "lamina reads PNG, JPEG, OpenEXR, TIFF, HDR and the other formats of OpenImageIO");
+              "lamina reads PNG, JPEG, OpenEXR, Radiance HDR and TIFF; convert others, e.g. with oiiotool");
   }
 }
 
@@ -29,7 +29,7 @@ NodeDecl declare_texture_image() {
   NodeDecl d;
   d.type = "texture/image";
   d.kind = NodeKind::Texture;
-  d.doc = "image file (any format OpenImageIO reads) looked up at (rotate(uv) * uv_scale + uv_offset)";
+  d.doc = "image file (PNG, JPEG, OpenEXR, Radiance HDR or TIFF) looked up at (rotate(uv) * uv_scale + uv_offset)";
   d.params.push_back(param("file", ValueType::String)
                          .described("image path, relative to the material file and inside the asset roots"));
   d.params.push_back(

@@ -15,18 +15,6 @@ namespace lamina {
 
 namespace {
 
-bool starts_with(std::string_view bytes, std::string_view magic) { return bytes.substr(0, magic.size()) == magic; }
-
-// The decoder to use: what the bytes say they are, else the file name's extension.
-std::string format_of(std::string_view bytes, const std::string& name) {
-  if (std::string format = image_format_of(bytes); !format.empty()) return format;
-  std::string ext = std::filesystem::path(name).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 // Fills `image` from rows of `channels` floats each.
 void store_row(LinearImage& image, int y, const float* row, int channels, bool srgb) {
   for (int x = 0; x < image.width; ++x) {
@@ -73,28 +61,13 @@ struct PngLayout {
   size_t row_bytes = 0;
 };
 
-// Everything that may longjmp lives here, with no C++ object that needs destroying in its frame:
-// `rows` and `image` belong to the caller.
-// The buffers of a decode, owned outside the frame that may be left by longjmp.
-struct PngBuffers {
-  std::vector<unsigned char> rows;
-  std::vector<png_bytep> pointers;
-  std::vector<float> converted;
-};
+// The two functions below are the only frames libpng may leave by longjmp. They create no C++
+// object (not even a temporary) and allocate nothing: every buffer is sized by the caller between
+// them, so a longjmp destroys nothing and no local is live after it.
 
-// Why `width` x `height` is refused, or "" when it fits the budget.
-std::string budget_problem(std::uint64_t width, std::uint64_t height, std::uint64_t max_pixels) {
-  if (width == 0 || height == 0)
-    return "the image has no pixels (" + std::to_string(width) + " x " + std::to_string(height) + ")";
-  if (width > kMaxImageSide || height > kMaxImageSide || width * height > max_pixels)
-    return "the image is " + std::to_string(width) + " x " + std::to_string(height) +
-           " pixels, more than the budget of " + std::to_string(max_pixels) +
-           " pixels (raise it with --max-image-pixels)";
-  return "";
-}
-
-bool png_run(png_structp png, png_infop info, PngState& state, std::uint64_t max_pixels, bool header_only, bool srgb,
-             PngLayout& layout, PngBuffers& buffers, LinearImage& image, std::string& budget_error) {
+// Reads the header, sets the transformations to 8- or 16-bit gray, gray-alpha, RGB or RGBA and
+// fills the layout they give.
+bool png_read_header(png_structp png, png_infop info, PngState& state, PngLayout& layout) {
   if (setjmp(state.jump)) return false;
   png_set_read_fn(png, &state, png_read_bytes);
   png_set_user_limits(png, static_cast<png_uint_32>(kMaxImageSide), static_cast<png_uint_32>(kMaxImageSide));
@@ -102,41 +75,30 @@ bool png_run(png_structp png, png_infop info, PngState& state, std::uint64_t max
   layout.width = png_get_image_width(png, info);
   layout.height = png_get_image_height(png, info);
   const int color_type = png_get_color_type(png, info);
-  int bit_depth = png_get_bit_depth(png, info);
-  if (header_only) {
-    layout.channels = (color_type & PNG_COLOR_MASK_PALETTE) ? 3 : (color_type & PNG_COLOR_MASK_COLOR) ? 3 : 1;
-    if ((color_type & PNG_COLOR_MASK_ALPHA) || png_get_valid(png, info, PNG_INFO_tRNS)) ++layout.channels;
-    return true;
-  }
-  budget_error = budget_problem(layout.width, layout.height, max_pixels);
-  if (!budget_error.empty()) return false;
   if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
-  if (color_type == PNG_COLOR_TYPE_GRAY && bit_depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+  if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) png_set_expand_gray_1_2_4_to_8(png);
   if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
-  if (bit_depth == 16) png_set_swap(png);  // little-endian host: 16-bit samples in host order
+  if (png_get_bit_depth(png, info) == 16) png_set_swap(png);  // little-endian host: samples in host order
   layout.interlaced = png_set_interlace_handling(png) > 1;
   png_read_update_info(png, info);
   layout.channels = png_get_channels(png, info);
-  layout.bit_depth = bit_depth = png_get_bit_depth(png, info);
+  layout.bit_depth = png_get_bit_depth(png, info);
   layout.row_bytes = png_get_rowbytes(png, info);
+  return true;
+}
 
-  image.width = static_cast<int>(layout.width);
-  image.height = static_cast<int>(layout.height);
-  image.texels.resize(static_cast<size_t>(layout.width) * layout.height);
-  // Interlaced images revisit rows, so they need every row at once; the others go row by row.
-  std::vector<unsigned char>& rows = buffers.rows;
-  std::vector<float>& converted = buffers.converted;
-  rows.resize(layout.row_bytes * (layout.interlaced ? layout.height : 1));
-  if (layout.interlaced) {
-    for (std::uint32_t y = 0; y < layout.height; ++y) buffers.pointers.push_back(rows.data() + y * layout.row_bytes);
-    png_read_image(png, buffers.pointers.data());
-  }
-  converted.resize(static_cast<size_t>(layout.width) * static_cast<size_t>(layout.channels));
+// Decodes the pixels into `image`. Interlaced images revisit rows, so `rows` holds all of them
+// (through `pointers`); the others go through one row. `converted` holds one row of floats.
+bool png_read_pixels(png_structp png, PngState& state, const PngLayout& layout, unsigned char* rows,
+                     png_bytep* pointers, float* converted, bool srgb, LinearImage& image) {
+  if (setjmp(state.jump)) return false;
+  if (layout.interlaced) png_read_image(png, pointers);
+  const size_t samples = static_cast<size_t>(layout.width) * static_cast<size_t>(layout.channels);
   for (std::uint32_t y = 0; y < layout.height; ++y) {
-    unsigned char* row = layout.interlaced ? rows.data() + y * layout.row_bytes : rows.data();
+    unsigned char* row = layout.interlaced ? pointers[y] : rows;
     if (!layout.interlaced) png_read_row(png, row, nullptr);
-    for (size_t i = 0; i < converted.size(); ++i) {
-      if (bit_depth == 16) {
+    for (size_t i = 0; i < samples; ++i) {
+      if (layout.bit_depth == 16) {
         std::uint16_t v;
         std::memcpy(&v, row + 2 * i, 2);
         converted[i] = static_cast<float>(v) / 65535.0f;
@@ -144,39 +106,55 @@ bool png_run(png_structp png, png_infop info, PngState& state, std::uint64_t max
         converted[i] = static_cast<float>(row[i]) / 255.0f;
       }
     }
-    store_row(image, static_cast<int>(y), converted.data(), layout.channels, srgb);
+    store_row(image, static_cast<int>(y), converted, layout.channels, srgb);
   }
   png_read_end(png, nullptr);
   return true;
 }
 
-// Decodes (or with `header_only` only reads the header of) a PNG.
-std::shared_ptr<LinearImage> decode_png(std::string_view bytes, std::uint64_t max_pixels, bool srgb, bool header_only,
-                                        ImageHeader& header) {
+// Owns libpng's structures for one decode.
+class PngReader {
+ public:
+  explicit PngReader(PngState& state) {
+    png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_failed, png_warned);
+    if (png_) info_ = png_create_info_struct(png_);
+    if (!png_ || !info_) {
+      png_destroy_read_struct(&png_, nullptr, nullptr);
+      throw ImageError("cannot start the PNG decoder");
+    }
+  }
+  ~PngReader() { png_destroy_read_struct(&png_, &info_, nullptr); }
+  PngReader(const PngReader&) = delete;
+  PngReader& operator=(const PngReader&) = delete;
+  png_structp png() const { return png_; }
+  png_infop info() const { return info_; }
+
+ private:
+  png_structp png_ = nullptr;
+  png_infop info_ = nullptr;
+};
+
+// Decodes a PNG whose header fits the budget.
+std::shared_ptr<LinearImage> decode_png(std::string_view bytes, bool srgb) {
   PngState state;
   state.bytes = bytes;
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_failed, png_warned);
-  if (!png) throw ImageError("cannot start the PNG decoder");
-  png_infop info = png_create_info_struct(png);
-  if (!info) {
-    png_destroy_read_struct(&png, nullptr, nullptr);
-    throw ImageError("cannot start the PNG decoder");
-  }
-  auto image = std::make_shared<LinearImage>();
-  PngBuffers buffers;
+  PngReader reader(state);
+  auto failed = [&] {
+    return ImageError("not a valid PNG image: " + (state.error.empty() ? std::string("decoding failed") : state.error));
+  };
   PngLayout layout;
-  std::string budget_error;
-  bool ok = false;
-  try {
-    ok = png_run(png, info, state, max_pixels, header_only, srgb, layout, buffers, *image, budget_error);
-  } catch (...) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    throw;
-  }
-  png_destroy_read_struct(&png, &info, nullptr);
-  if (!budget_error.empty()) throw ImageError(budget_error);
-  if (!ok) throw ImageError("not a valid PNG image: " + (state.error.empty() ? "decoding failed" : state.error));
-  header = ImageHeader{"png", static_cast<int>(layout.width), static_cast<int>(layout.height), layout.channels};
+  if (!png_read_header(reader.png(), reader.info(), state, layout)) throw failed();
+  auto image = std::make_shared<LinearImage>();
+  image->width = static_cast<int>(layout.width);
+  image->height = static_cast<int>(layout.height);
+  image->texels.resize(static_cast<size_t>(layout.width) * layout.height);
+  std::vector<unsigned char> rows(layout.row_bytes * (layout.interlaced ? layout.height : 1));
+  std::vector<png_bytep> pointers;
+  if (layout.interlaced)
+    for (std::uint32_t y = 0; y < layout.height; ++y) pointers.push_back(rows.data() + y * layout.row_bytes);
+  std::vector<float> converted(static_cast<size_t>(layout.width) * static_cast<size_t>(layout.channels));
+  if (!png_read_pixels(reader.png(), state, layout, rows.data(), pointers.data(), converted.data(), srgb, *image))
+    throw failed();
   return image;
 }
 
@@ -194,44 +172,61 @@ std::string oiio_error(const OIIO::ImageInput* input) {
   return why.empty() ? "decoding failed" : why;
 }
 
-std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const std::string& format, std::uint64_t max_pixels,
-                                         bool srgb, bool header_only, ImageHeader& header) {
+// OpenImageIO's name for the reader of a format.
+const char* oiio_reader(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::Jpeg: return "jpeg";
+    case ImageFormat::OpenExr: return "openexr";
+    case ImageFormat::RadianceHdr: return "hdr";
+    case ImageFormat::Tiff: return "tiff";
+    case ImageFormat::Png: break;
+  }
+  throw ImageError("no OpenImageIO reader for " + format_name(format));
+}
+
+// Decodes a JPEG, OpenEXR, Radiance HDR or TIFF image whose header (read by lamina) fits the
+// budget, with that format's reader alone: OpenImageIO would otherwise try every reader it has on
+// bytes its first choice refuses.
+std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const ImageHeader& header, bool srgb) {
+  const std::string format = format_name(header.format);
+  auto input = OIIO::ImageInput::create(oiio_reader(header.format));
+  if (!input) throw ImageError("cannot start the " + format + " decoder: " + oiio_error(nullptr));
   OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
-  OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
+  if (!input->set_ioproxy(&proxy))
+    throw ImageError("cannot start the " + format + " decoder: " + oiio_error(input.get()));
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as texture/image outputs it
-  // The readers take the memory proxy from the configuration (OpenImageIO 2.4); the name only picks
-  // the reader and is never opened.
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
-  const std::string pseudo_name = "image." + format;
-  auto input = OIIO::ImageInput::open(pseudo_name, &config);
-  if (!input) throw ImageError("not a readable " + format + " image: " + oiio_error(nullptr));
-  const OIIO::ImageSpec spec = input->spec();
-  header = ImageHeader{input->format_name(), spec.width, spec.height, spec.nchannels};
-  if (header_only) {
-    input->close();
-    return nullptr;
-  }
+  OIIO::ImageSpec spec;
+  // The name is never opened: the reader reads the proxy.
+  if (!input->open("image", spec, config))
+    throw ImageError("not a readable " + format + " image: " + oiio_error(input.get()));
   if (spec.depth > 1)
     throw ImageError("the image is a volume of " + std::to_string(spec.depth) + " slices, not a texture");
-  if (spec.width < 0 || spec.height < 0) throw ImageError("the image's header gives a negative size");
-  if (std::string why =
-          budget_problem(static_cast<std::uint64_t>(spec.width), static_cast<std::uint64_t>(spec.height), max_pixels);
-      !why.empty())
-    throw ImageError(why);
+  if (spec.width < 0 || spec.height < 0 || static_cast<std::uint64_t>(spec.width) != header.width ||
+      static_cast<std::uint64_t>(spec.height) != header.height)
+    throw ImageError("the " + format + " decoder reads " + std::to_string(spec.width) + " x " +
+                     std::to_string(spec.height) + " pixels where the header declares " + std::to_string(header.width) +
+                     " x " + std::to_string(header.height));
   if (spec.nchannels < 1) throw ImageError("the image has no channels");
   const int channels = std::min(spec.nchannels, 4);
   auto image = std::make_shared<LinearImage>();
   image->width = spec.width;
   image->height = spec.height;
   image->texels.resize(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height));
-  // A band of rows at a time: the only copy of the whole image is the texels themselves.
-  constexpr int kBand = 64;
-  std::vector<float> band(static_cast<size_t>(spec.width) * kBand * static_cast<size_t>(channels));
-  for (int y = 0; y < spec.height; y += kBand) {
-    const int end = std::min(spec.height, y + kBand);
-    if (!input->read_scanlines(0, 0, spec.y + y, spec.y + end, spec.z, 0, channels, OIIO::TypeDesc::FLOAT, band.data()))
-      throw ImageError("cannot decode the " + format + " image: " + oiio_error(input.get()));
+  // A band of rows at a time: the only copy of the whole image is the texels themselves. A tiled
+  // image is read a row of tiles at a time (OpenImageIO 2.4's read_scanlines divides by zero on
+  // tiled files).
+  const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
+  const int band_rows = std::min(spec.height, tiled ? spec.tile_height : 64);
+  std::vector<float> band(static_cast<size_t>(spec.width) * static_cast<size_t>(band_rows) *
+                          static_cast<size_t>(channels));
+  for (int y = 0; y < spec.height; y += band_rows) {
+    const int end = std::min(spec.height, y + band_rows);
+    const bool read = tiled ? input->read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y, spec.y + end, spec.z,
+                                                spec.z + 1, 0, channels, OIIO::TypeDesc::FLOAT, band.data())
+                            : input->read_scanlines(0, 0, spec.y + y, spec.y + end, spec.z, 0, channels,
+                                                    OIIO::TypeDesc::FLOAT, band.data());
+    if (!read) throw ImageError("cannot decode the " + format + " image: " + oiio_error(input.get()));
     for (int row = y; row < end; ++row)
       store_row(*image, row, band.data() + static_cast<size_t>(row - y) * static_cast<size_t>(spec.width) * channels,
                 channels, srgb);
@@ -242,55 +237,35 @@ std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const std::stri
   return image;
 }
 
-std::shared_ptr<LinearImage> decode(std::string_view bytes, const std::string& name, std::uint64_t max_pixels,
-                                    bool srgb, bool header_only, ImageHeader& header) {
-  const std::string format = format_of(bytes, name);
-  if (format.empty())
-    throw ImageError("not an image lamina recognises (no known signature, and the name has no extension)");
-  if (format == "png") return decode_png(bytes, max_pixels, srgb, header_only, header);
-  return decode_oiio(bytes, format, max_pixels, srgb, header_only, header);
-}
-
 }  // namespace
 
-std::string image_format_of(std::string_view bytes) {
-  using namespace std::string_view_literals;
-  if (starts_with(bytes, "\x89PNG\r\n\x1a\n"sv)) return "png";
-  if (starts_with(bytes, "\xff\xd8\xff"sv)) return "jpg";
-  if (starts_with(bytes, "\x76\x2f\x31\x01"sv)) return "exr";
-  if (starts_with(bytes, "II*\0"sv) || starts_with(bytes, "MM\0*"sv) || starts_with(bytes, "II+\0"sv) ||
-      starts_with(bytes, "MM\0+"sv))
-    return "tif";
-  if (starts_with(bytes, "#?RADIANCE"sv) || starts_with(bytes, "#?RGBE"sv)) return "hdr";
-  if (starts_with(bytes, "BM"sv)) return "bmp";
-  if (starts_with(bytes, "GIF87a"sv) || starts_with(bytes, "GIF89a"sv)) return "gif";
-  if (starts_with(bytes, "RIFF"sv) && bytes.size() >= 12 && bytes.substr(8, 4) == "WEBP") return "webp";
-  if (starts_with(bytes, "8BPS"sv)) return "psd";
-  if (starts_with(bytes, "DDS "sv)) return "dds";
-  return "";
-}
-
-ImageHeader read_image_header(std::string_view bytes, const std::string& name) {
-  ImageHeader header;
-  decode(bytes, name, 0, false, true, header);
-  return header;
-}
-
-std::shared_ptr<const LinearImage> decode_linear_image(std::string_view bytes, const std::string& name, bool srgb,
-                                                       std::uint64_t max_pixels) {
-  ImageHeader header;
-  return decode(bytes, name, max_pixels, srgb, false, header);
+std::shared_ptr<const LinearImage> decode_linear_image(std::string_view bytes, bool srgb, std::uint64_t max_pixels) {
+  const ImageHeader header = read_image_header(bytes);
+  if (std::string why = image_budget_problem(header, max_pixels); !why.empty()) throw ImageError(why);
+  std::shared_ptr<LinearImage> image =
+      header.format == ImageFormat::Png ? decode_png(bytes, srgb) : decode_oiio(bytes, header, srgb);
+  // Float formats (EXR, HDR, TIFF) can hold NaN and infinity, which no clamp downstream removes
+  // (a NaN fails every comparison): such a texel would make the BRDF NaN wherever it is sampled.
+  for (size_t i = 0; i < image->texels.size(); ++i) {
+    const glm::vec4& t = image->texels[i];
+    if (!std::isfinite(t.r) || !std::isfinite(t.g) || !std::isfinite(t.b) || !std::isfinite(t.a)) {
+      const size_t width = static_cast<size_t>(image->width);
+      throw ImageError("texel (" + std::to_string(i % width) + ", " + std::to_string(i / width) +
+                       ") is not a finite number (NaN or infinity); lamina's images hold finite values");
+    }
+  }
+  return image;
 }
 
 std::shared_ptr<const LinearImage> load_image_reference(const Reference& reference, bool srgb,
                                                         const AssetPolicy& policy) {
   const std::string bytes = read_reference(reference, kMaxBinaryFileBytes, policy);
-  return decode_linear_image(bytes, reference.resolved.filename().string(), srgb, policy.max_image_pixels);
+  return decode_linear_image(bytes, srgb, policy.max_image_pixels);
 }
 
 std::shared_ptr<const LinearImage> load_image_file(const std::filesystem::path& path, bool srgb,
                                                    std::uint64_t max_pixels) {
-  return decode_linear_image(read_input_file(path, kMaxBinaryFileBytes), path.filename().string(), srgb, max_pixels);
+  return decode_linear_image(read_input_file(path, kMaxBinaryFileBytes), srgb, max_pixels);
 }
 
 glm::vec4 sample_bilinear(const LinearImage& image, glm::vec2 uv, Wrap wrap) {

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "graph/cpu/image_header.h"
 #include "graph/file_access.h"
 
 namespace lamina {
@@ -25,34 +26,13 @@ struct LinearImage {
 
 enum class Wrap { Repeat = 0, Clamp = 1, Mirror = 2 };
 
-// Bytes that are not an image lamina can decode, or one beyond the pixel budget; the message is
-// lamina's own words with the decoder's reason, never the decoder's output on the terminal.
-class ImageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct ImageHeader {
-  std::string format;  // "png", "jpeg", "openexr", ...
-  int width = 0;
-  int height = 0;
-  int channels = 0;
-};
-
-// What the bytes of an encoded image say they are, by their signature: "png", "jpg", "exr", "tif",
-// "hdr", "bmp", "gif", "webp", "psd", "dds"; "" when no signature is known.
-std::string image_format_of(std::string_view bytes);
-
-// Reads the header of an encoded image without decoding any pixel. `name` (a file name) picks the
-// decoder only when the bytes do not say what they are. Throws ImageError.
-ImageHeader read_image_header(std::string_view bytes, const std::string& name);
-
-// Decodes the first image of `bytes` (PNG through libpng, every other format OpenImageIO reads):
-// grey gives r = g = b, missing alpha is 1, alpha stays straight (not multiplied into the colour),
-// integer formats map to [0, 1]. With `srgb` the colour channels are decoded with the sRGB curve.
-// Refuses images whose width x height exceeds `max_pixels` before decoding. Throws ImageError.
-std::shared_ptr<const LinearImage> decode_linear_image(std::string_view bytes, const std::string& name, bool srgb,
-                                                       std::uint64_t max_pixels);
+// Decodes the first image of `bytes`, in a format of image_header.h (PNG through libpng, the others
+// through OpenImageIO): grey gives r = g = b, missing alpha is 1, alpha stays straight (not
+// multiplied into the colour), integer formats map to [0, 1]. With `srgb` the colour channels are
+// decoded with the sRGB curve. Refuses, before any decoder runs, an image whose header is malformed
+// or beyond `max_pixels`, and after decoding one holding a texel that is not finite. Throws
+// ImageError.
+std::shared_ptr<const LinearImage> decode_linear_image(std::string_view bytes, bool srgb, std::uint64_t max_pixels);
 
 // A referenced image file read (file_access.h) and decoded under the policy's pixel budget.
 // Throws ReferenceError for a reference that cannot be read and ImageError for one that does not

@@ -83,15 +83,15 @@ glm::dmat4 object_matrix(const Transform& t) {
 
 // The glTF mimeType of images glTF holds as they are (PNG and JPEG), "" for the others.
 std::string mime_of(std::string_view bytes) {
-  const std::string format = image_format_of(bytes);
-  return format == "png" ? "image/png" : format == "jpg" ? "image/jpeg" : "";
+  ImageFormat format;
+  if (!image_format_of(bytes, format)) return "";
+  return format == ImageFormat::Png ? "image/png" : format == ImageFormat::Jpeg ? "image/jpeg" : "";
 }
 
 // Images glTF cannot hold (EXR, TIFF, HDR, ...) become 8-bit RGBA PNGs; values are clamped to
 // [0, 1] and rounded, with no change of transfer curve.
-std::vector<unsigned char> png_from_any_image(const std::string& bytes, const std::string& name,
-                                              std::uint64_t max_pixels) {
-  const auto image = decode_linear_image(bytes, name, false, max_pixels);
+std::vector<unsigned char> png_from_any_image(const std::string& bytes, std::uint64_t max_pixels) {
+  const auto image = decode_linear_image(bytes, false, max_pixels);
   std::vector<uint8_t> pixels(image->texels.size() * 4);
   for (size_t i = 0; i < image->texels.size(); ++i)
     for (int c = 0; c < 4; ++c)
@@ -457,10 +457,10 @@ class Writer {
     std::vector<unsigned char> bytes(text.begin(), text.end());
     std::string mime = mime_of(text);
     if (mime.empty()) {
-      bytes = png_from_any_image(text, name, policy.max_image_pixels);
+      bytes = png_from_any_image(text, policy.max_image_pixels);
       mime = "image/png";
     } else {
-      decode_linear_image(text, name, false, policy.max_image_pixels);
+      decode_linear_image(text, false, policy.max_image_pixels);
     }
     int source = image(bytes, mime, name);
     int texture = push("textures", Json{{"sampler", sampler(wrap)}, {"source", source}});

@@ -35,8 +35,9 @@ const std::set<std::string> kNotMaterialExtensions{"KHR_lights_punctual", "KHR_m
 
 // ".png" or ".jpg" for the image formats glTF holds, by the bytes' signature; "" otherwise.
 std::string extension_for(std::string_view bytes) {
-  const std::string format = image_format_of(bytes);
-  return format == "png" || format == "jpg" ? "." + format : "";
+  ImageFormat format;
+  if (!image_format_of(bytes, format)) return "";
+  return format == ImageFormat::Png ? ".png" : format == ImageFormat::Jpeg ? ".jpg" : "";
 }
 
 std::string lowercase(std::string s) {
@@ -283,24 +284,16 @@ class Importer {
       const std::string image_pointer = "/images/" + std::to_string(source);
       try {
         std::string bytes = model_.image_bytes(source);
-        decode_linear_image(bytes, image_name(size_t(source)), false, policy_.max_image_pixels);
+        decode_linear_image(bytes, false, policy_.max_image_pixels);
         cached->second = std::move(bytes);
       } catch (const Error& e) {
         for (const auto& d : e.diagnostics()) diagnostics_.error(d.file, d.pointer, d.message, d.hint);
       } catch (const ImageError& e) {
         diagnostics_.error(file_, image_pointer, std::string("the image does not decode: ") + e.what(),
-                           "lamina extracts only images it can read (PNG, JPEG, ...)");
+                           "lamina extracts only images it can read");
       }
     }
     return cached->second ? &*cached->second : nullptr;
-  }
-
-  // The image's name for messages and the decoder's guess when its bytes do not say their format.
-  std::string image_name(size_t source) const {
-    const GltfImage& image = model_.images[source];
-    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0)
-      return std::filesystem::path(uri_decode(image.uri)).filename().string();
-    return image.mime_type == "image/jpeg" ? "image.jpg" : "image.png";
   }
 
   // The extracted file name for glTF texture `texture` (its image's bytes), or "" after an error.
@@ -452,10 +445,9 @@ class Importer {
     // Decoded in memory, not extracted: no node refers to it.
     const std::string* image = image_of(texture, pointer + "/index");
     if (!image) return;
-    const auto source = static_cast<size_t>(model_.textures[static_cast<size_t>(texture)].source);
     double green = 0.0, blue = 0.0;
     try {
-      auto decoded = decode_linear_image(*image, image_name(source), false, policy_.max_image_pixels);
+      auto decoded = decode_linear_image(*image, false, policy_.max_image_pixels);
       for (const auto& t : decoded->texels) {
         green += t.g;
         blue += t.b;
