@@ -5,13 +5,44 @@
 
 namespace lamina {
 
+namespace {
+
+// A pointer as printed: a token (a key) longer than any name lamina knows is shown by its start and
+// its length, so that a hostile key cannot make every message that points near it kilobytes long.
+// Diagnostic::pointer itself stays exact.
+std::string shown_pointer(std::string_view pointer) {
+  constexpr size_t kLongToken = 64, kShown = 32;
+  std::string out;
+  size_t start = 0;
+  while (start < pointer.size()) {
+    size_t end = pointer.find('/', start + 1);
+    if (end == std::string_view::npos) end = pointer.size();
+    const std::string_view token = pointer.substr(start, end - start);  // with its leading '/'
+    if (token.size() > kLongToken + 1)
+      out += std::string(token.substr(0, kShown + 1)) + "...(a key of " + std::to_string(token.size() - 1) + " bytes)";
+    else
+      out += token;
+    start = end;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string format(const Diagnostic& d) {
   // RFC 6901: the empty pointer is the whole document ("/" would be the member named "").
-  std::string out = printable(d.file) + ":" + printable(d.pointer) + ": ";
+  std::string out = printable(d.file) + ":" + printable(shown_pointer(d.pointer)) + ": ";
   if (d.severity == Severity::Warning) out += "warning: ";
   out += printable(d.message);
   if (!d.hint.empty()) out += " (" + printable(d.hint) + ")";
   return out;
+}
+
+std::string quote_excerpt(std::string_view text, char mark) {
+  constexpr size_t kShown = 64;
+  if (text.size() <= kShown) return mark + std::string(text) + mark;
+  return mark + std::string(text.substr(0, kShown)) + "..." + mark + " (a string of " + std::to_string(text.size()) +
+         " bytes)";
 }
 
 std::string printable(std::string_view text) {

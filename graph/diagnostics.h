@@ -20,8 +20,13 @@ struct Diagnostic {
 
 // "file:pointer: message (hint)" -- the one format the CLI prints, on one line: every part passes
 // through printable(), so that nothing a file contains can move the cursor, colour the terminal
-// or start a line that looks like another message.
+// or start a line that looks like another message. A pointer token (a key) longer than 64 bytes is
+// printed as its start and its length.
 std::string format(const Diagnostic& d);
+
+// `text` between `mark`s, as a message quotes what a file wrote: its first 64 bytes and its length
+// when it is longer, so that no hostile string makes a message kilobytes long.
+std::string quote_excerpt(std::string_view text, char mark = '"');
 
 // `text` with control characters escaped: C0 controls, DEL and C1 controls as \n, \t, \x1b,
 // \u009b, and bytes that are not UTF-8 as \xHH; printable UTF-8 stays as it is.

@@ -159,15 +159,19 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
   ref.written = std::string(written);
   // Every message starts with the reference as written, so that callers can put what it is in
   // front: "texture file 'x.png' not found".
-  const std::string quoted = "'" + ref.written + "'";
+  const std::string shown = quote_excerpt(ref.written, '\'');
   const char* const relative_hint = "name files by paths relative to the file that names them";
   if (written.empty()) throw ReferenceError("'' is an empty path", relative_hint);
+  if (written.size() > kMaxReferenceLength)
+    throw ReferenceError(
+        shown + " is longer than any path lamina follows (" + std::to_string(kMaxReferenceLength) + " bytes)",
+        relative_hint);
   if (written.find('\0') != std::string_view::npos)
-    throw ReferenceError(quoted + " contains a NUL byte, which no path can hold", relative_hint);
+    throw ReferenceError(shown + " contains a NUL byte, which no path can hold", relative_hint);
   if (written.find('\\') != std::string_view::npos)
-    throw ReferenceError(quoted + " contains a backslash", "separate folders with '/'");
+    throw ReferenceError(shown + " contains a backslash", "separate folders with '/'");
   if (written.front() == '/')
-    throw ReferenceError(quoted + " is an absolute path, which lamina does not follow", relative_hint);
+    throw ReferenceError(shown + " is an absolute path, which lamina does not follow", relative_hint);
   // RFC 3986 sec. 3.1: scheme ":"; also catches Windows drive letters ("C:").
   const size_t colon = written.find(':');
   if (colon != std::string_view::npos && colon > 0) {
@@ -177,7 +181,7 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
         scheme.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789+-.") ==
             std::string_view::npos;
     if (is_scheme && written.find('/') > colon)
-      throw ReferenceError(quoted + " is a '" + std::string(scheme) + ":' URI, which lamina does not follow",
+      throw ReferenceError(shown + " is a '" + std::string(scheme) + ":' URI, which lamina does not follow",
                            relative_hint);
   }
   const fs::path folder = absolute_normal(naming_file).parent_path();
@@ -203,7 +207,7 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
   bool lexically_inside = false;
   for (const auto& a : allowed) lexically_inside = lexically_inside || is_inside(ref.path, a);
   if (!lexically_inside)
-    throw ReferenceError(quoted + " leads outside the folders lamina reads from (" + where() + ")", outside_hint);
+    throw ReferenceError(shown + " leads outside the folders lamina reads from (" + where() + ")", outside_hint);
 
   if (policy.overlay && policy.overlay->count(ref.path)) {
     ref.resolved = ref.path;
@@ -211,14 +215,14 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
     return ref;
   }
   if (policy.overlay_only)
-    throw ReferenceError(quoted + " not found (looked for " + ref.path.string() + ")",
+    throw ReferenceError(shown + " not found (looked for " + ref.path.string() + ")",
                          "paths are relative to the folder of the file that names them");
   std::error_code ec;
   ref.resolved = fs::canonical(ref.path, ec);
   if (ec == std::errc::no_such_file_or_directory)
-    throw ReferenceError(quoted + " not found (looked for " + ref.path.string() + ")",
+    throw ReferenceError(shown + " not found (looked for " + ref.path.string() + ")",
                          "paths are relative to the folder of the file that names them");
-  if (ec) throw ReferenceError(quoted + " cannot be followed (" + ref.path.string() + "): " + ec.message(), "");
+  if (ec) throw ReferenceError(shown + " cannot be followed (" + ref.path.string() + "): " + ec.message(), "");
   // Then with symbolic links resolved, in the named folders and in what they are links to.
   bool inside = false;
   for (const auto& a : allowed) {
@@ -227,16 +231,16 @@ Reference resolve_reference(const fs::path& naming_file, std::string_view writte
     inside = inside || is_inside(ref.resolved, canonical_ec ? a : real);
   }
   if (!inside)
-    throw ReferenceError(quoted + " passes through a symbolic link to " + ref.resolved.string() +
+    throw ReferenceError(shown + " passes through a symbolic link to " + ref.resolved.string() +
                              ", outside the folders lamina reads from (" + where() + ")",
                          outside_hint);
   return ref;
 }
 
 std::string read_reference(const Reference& reference, std::uint64_t max_bytes, const AssetPolicy& policy) {
-  const std::string quoted = "'" + reference.written + "'";
+  const std::string shown = quote_excerpt(reference.written, '\'');
   auto too_large = [&](std::uint64_t size) {
-    return ReferenceError(quoted + " is " + std::to_string(size) + " bytes, " + too_large_message(max_bytes), "");
+    return ReferenceError(shown + " is " + std::to_string(size) + " bytes, " + too_large_message(max_bytes), "");
   };
   if (reference.in_memory) {
     const std::string& bytes = policy.overlay->at(reference.resolved);
@@ -247,19 +251,19 @@ std::string read_reference(const Reference& reference, std::uint64_t max_bytes, 
   // the resolved path has none left.
   const Descriptor fd(::open(reference.resolved.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY | O_NOFOLLOW));
   if (fd.get() < 0)
-    throw ReferenceError(quoted + " cannot be opened (" + reference.resolved.string() + "): " + system_reason(errno),
+    throw ReferenceError(shown + " cannot be opened (" + reference.resolved.string() + "): " + system_reason(errno),
                          "");
   struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) throw ReferenceError(quoted + " cannot be read: " + system_reason(errno), "");
+  if (::fstat(fd.get(), &st) != 0) throw ReferenceError(shown + " cannot be read: " + system_reason(errno), "");
   if (!S_ISREG(st.st_mode))
-    throw ReferenceError(quoted + " is " + kind_of(st.st_mode) + ", not a regular file",
+    throw ReferenceError(shown + " is " + kind_of(st.st_mode) + ", not a regular file",
                          "lamina reads only regular files");
   if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large(static_cast<std::uint64_t>(st.st_size));
   std::string bytes;
   bool over = false;
   if (!read_all(fd.get(), max_bytes, static_cast<std::uint64_t>(st.st_size), bytes, over))
-    throw ReferenceError(quoted + " cannot be read: " + system_reason(errno), "");
-  if (over) throw ReferenceError(quoted + " grew while it was read, beyond " + byte_size_text(max_bytes), "");
+    throw ReferenceError(shown + " cannot be read: " + system_reason(errno), "");
+  if (over) throw ReferenceError(shown + " grew while it was read, beyond " + byte_size_text(max_bytes), "");
   ledger().add(st);
   return bytes;
 }

@@ -128,7 +128,7 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
     auto it = index.find(link.node);
     if (it == index.end()) {
       std::string suggestion = closest_match(link.node, ids);
-      error(pointer, "link to unknown node '" + link.node + "'",
+      error(pointer, "link to unknown node " + quote_excerpt(link.node, '\''),
             suggestion.empty() ? "node ids in this material: " + join_alternatives(ids)
                                : "did you mean '@" + suggestion + "'?");
       return std::nullopt;
@@ -136,7 +136,9 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
     const NodeDecl& source = *g.decls_[it->second];
     const OutputDecl* output = source.find_output(link.output);
     if (!output) {
-      error(pointer, "node '" + link.node + "' (" + source.type + ") has no output '" + link.output + "'",
+      error(pointer,
+            "node " + quote_excerpt(link.node, '\'') + " (" + source.type + ") has no output " +
+                quote_excerpt(link.output, '\''),
             "its outputs: " + join_alternatives(source.output_names()));
       return std::nullopt;
     }

@@ -145,7 +145,7 @@ class Reader {
     }
     m.class_tag = optional_string(j, pointer, "class");
     if (m.class_tag && !(m.class_tag->size() == 1 && (*m.class_tag)[0] >= 'a' && (*m.class_tag)[0] <= 'h')) {
-      error(pointer + "/class", "unknown class \"" + *m.class_tag + "\"",
+      error(pointer + "/class", "unknown class " + quote_excerpt(*m.class_tag),
             "the course's classes are a, b, c, d, e, f, g or h");
       m.class_tag.reset();
     }
@@ -218,7 +218,7 @@ class Reader {
     const NodeDecl* decl = registry_.find(n.type);
     if (!decl) {
       std::string suggestion = closest_match(n.type, registry_.type_names());
-      error(pointer + "/type", "unknown node type \"" + n.type + "\"",
+      error(pointer + "/type", "unknown node type " + quote_excerpt(n.type),
             (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
                 "valid types: " + join_alternatives(registry_.type_names()));
       return n;
@@ -307,7 +307,7 @@ class Reader {
       Link link;
       if (parse_link(text, link)) return Value{link};
       if (is_closure(p.type) || (!text.empty() && text[0] == '@')) {
-        error(pointer, "\"" + text + "\" is not a valid link", "write \"@node_id\" or \"@node_id.output\"");
+        error(pointer, quote_excerpt(text) + " is not a valid link", "write \"@node_id\" or \"@node_id.output\"");
         return std::nullopt;
       }
     }
@@ -365,7 +365,7 @@ class Reader {
         auto text = j.get<std::string>();
         if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end()) {
           std::string suggestion = closest_match(text, p.choices);
-          error(pointer, "unknown " + p.name + " \"" + text + "\"",
+          error(pointer, "unknown " + p.name + " " + quote_excerpt(text),
                 (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
                     "valid values: " + join_alternatives(p.choices));
           return std::nullopt;

@@ -223,7 +223,20 @@ size_t scan_string(std::string_view text, size_t i, std::string* decoded) {
 // nlohmann's messages start with "[json.exception...] parse error at line L, column C: ".
 std::string syntax_reason(const std::string& what) {
   auto at = what.find(": ");
-  return at == std::string::npos ? what : what.substr(at + 2);
+  std::string reason = at == std::string::npos ? what : what.substr(at + 2);
+  // The parser quotes the token it was reading, which may be a whole 100 MB string: keep its end,
+  // where the error is.
+  const std::string marker = "last read: '";
+  const size_t token = reason.find(marker);
+  constexpr size_t kShown = 64;
+  if (token != std::string::npos) {
+    const size_t begin = token + marker.size();
+    const size_t length = reason.size() - begin - (reason.back() == '\'' ? 1 : 0);
+    if (length > kShown)
+      reason = reason.substr(0, begin) + "..." + reason.substr(begin + length - kShown, kShown) + "' (the last " +
+               std::to_string(kShown) + " of " + std::to_string(length) + " bytes)";
+  }
+  return reason;
 }
 
 }  // namespace
@@ -239,10 +252,7 @@ std::string json_kind(const Json& j) {
 
 std::string json_describe(const Json& j) {
   if (!j.is_string()) return json_kind(j);
-  const std::string& text = j.get_ref<const std::string&>();
-  constexpr size_t kShown = 64;
-  if (text.size() <= kShown) return "\"" + text + "\"";
-  return "\"" + text.substr(0, kShown) + "...\" (a string of " + std::to_string(text.size()) + " bytes)";
+  return quote_excerpt(j.get_ref<const std::string&>());
 }
 
 std::optional<NestingExcess> find_nesting_excess(std::string_view text, int max_depth) {
@@ -332,7 +342,7 @@ void check_known_keys(const Json& object, const std::string& file, const std::st
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     std::string suggestion = closest_match(key, known);
     diagnostics.error(
-        file, pointer_append(pointer, key), "unknown key \"" + key + "\"",
+        file, pointer_append(pointer, key), "unknown key " + quote_excerpt(key),
         suggestion.empty() ? "expected " + join_alternatives(known) : "did you mean \"" + suggestion + "\"?");
   }
 }

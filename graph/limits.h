@@ -18,6 +18,10 @@ inline constexpr int kMaxJsonDepth = 128;
 // one, lamina prefixes and suffixes them) and the labels of sample-sheet spheres.
 inline constexpr size_t kMaxIdentifierLength = 64;
 
+// A reference to another file (a texture, material file, mesh, glTF buffer or image URI): Linux's
+// PATH_MAX, beyond which no path can be opened anyway.
+inline constexpr size_t kMaxReferenceLength = 4096;
+
 // Material and scene files, and the JSON of a glTF file.
 inline constexpr std::uint64_t kMaxJsonFileBytes = std::uint64_t{64} << 20;  // 64 MiB
 // A .glb, a glTF buffer (.bin) and an image file.

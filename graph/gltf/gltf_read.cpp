@@ -347,7 +347,7 @@ class Reader {
     // "2.0" or any 2.x: minor versions are backwards compatible (sec. 2.1); minVersion may say more.
     auto major = [](const std::string& v) { return v.substr(0, v.find('.')); };
     if (!version.empty() && major(version) != "2")
-      error("/asset/version", "glTF version \"" + version + "\": lamina reads glTF 2.x");
+      error("/asset/version", "glTF version " + quote_excerpt(version) + ": lamina reads glTF 2.x");
     const std::string min_version = string(*asset, "minVersion", "/asset");
     if (!min_version.empty() && min_version != "2.0")
       error("/asset/minVersion", "the file needs glTF " + min_version + "; lamina reads glTF 2.0");
@@ -400,7 +400,7 @@ class Reader {
     a.type = string(j, "type", p, true);
     a.components = components_of(a.type);
     if (!a.type.empty() && a.components == 0)
-      error(pointer_append(p, "type"), "unknown accessor type \"" + a.type + "\"",
+      error(pointer_append(p, "type"), "unknown accessor type " + quote_excerpt(a.type),
             "SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
     a.sparse = member(j, "sparse") != nullptr;
     return a;
@@ -494,7 +494,8 @@ class Reader {
     if (member(j, "alphaMode")) {
       m.alpha_mode = string(j, "alphaMode", p);
       if (m.alpha_mode != "OPAQUE" && m.alpha_mode != "MASK" && m.alpha_mode != "BLEND")
-        error(pointer_append(p, "alphaMode"), "unknown alphaMode \"" + m.alpha_mode + "\"", "OPAQUE, MASK or BLEND");
+        error(pointer_append(p, "alphaMode"), "unknown alphaMode " + quote_excerpt(m.alpha_mode),
+              "OPAQUE, MASK or BLEND");
     }
     if (const Json* extensions = member(j, "extensions")) {
       if (extensions->is_object())

@@ -9,8 +9,6 @@ namespace lamina {
 
 namespace {
 
-constexpr double kLimit = kSceneNumberLimit;
-
 SceneField name_field(const std::string& what) {
   return {.name = "name",
           .type = SceneFieldType::Text,

@@ -46,7 +46,7 @@ struct FieldValues {
   }
 };
 
-std::string single_quoted(const std::string& s) { return "'" + s + "'"; }
+std::string single_quoted(const std::string& s) { return quote_excerpt(s, '\''); }
 
 bool has_extension(const std::filesystem::path& path, std::initializer_list<const char*> extensions) {
   std::string ext = path.extension().string();
@@ -260,7 +260,7 @@ class SceneReader {
         auto text = j.get<std::string>();
         if (std::find(f.choices.begin(), f.choices.end(), text) == f.choices.end()) {
           std::string suggestion = closest_match(text, f.choices);
-          return error(pointer, "unknown " + f.name + " \"" + text + "\"",
+          return error(pointer, "unknown " + f.name + " " + quote_excerpt(text),
                        (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
                            "valid values: " + join_alternatives(f.choices));
         }
@@ -532,7 +532,7 @@ class SceneReader {
     o.mesh_file = written;
     o.resolved_mesh_file = resolve(written);
     if (!has_extension(o.resolved_mesh_file, {".gltf", ".glb"})) {
-      error(pointer, "expected a .gltf or .glb mesh file, found \"" + written + "\"");
+      error(pointer, "expected a .gltf or .glb mesh file, found " + quote_excerpt(written));
       return false;
     }
     const auto reference = follow(written, pointer, "mesh file");

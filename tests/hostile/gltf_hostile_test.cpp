@@ -14,9 +14,13 @@
 
 #include "graph/gltf/png_encode.h"
 #include "graph/limits.h"
+#include "hostile_support.h"
 #include "test_support.h"
 
 using namespace lamina;
+using test::expect_refused;
+using test::Outcome;
+using test::run_in;
 
 namespace {
 
@@ -82,27 +86,6 @@ std::string png(int size) {
   std::vector<uint8_t> pixels(size_t(size * size * 3), 128);
   const auto bytes = gltf::encode_png(size, size, 3, pixels);
   return std::string(bytes.begin(), bytes.end());
-}
-
-struct Outcome {
-  test::RunResult run;
-  std::vector<std::string> before, after;
-};
-
-Outcome run_in(const fs::path& dir, const std::string& args) {
-  Outcome o;
-  o.before = test::listing(dir);
-  o.run = test::run_cli_within(20, args, dir);
-  o.after = test::listing(dir);
-  return o;
-}
-
-void expect_refused(const Outcome& o, const std::string& where, const std::string& message) {
-  INFO(o.run.err);
-  CHECK(o.run.exit_code == 2);
-  CHECK(o.run.err.find(where) != std::string::npos);
-  CHECK(o.run.err.find(message) != std::string::npos);
-  CHECK(o.before == o.after);  // nothing written, no scratch folder left
 }
 
 // `name` as a scene's mesh file, checked by lamina validate; the scene lies next to it.

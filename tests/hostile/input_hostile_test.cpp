@@ -10,14 +10,20 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "graph/cpu/image.h"
 #include "graph/gltf/png_encode.h"
 #include "graph/limits.h"
+#include "hostile_support.h"
 #include "test_support.h"
 
 using namespace lamina;
+using test::expect_refused;
+using test::Outcome;
+using test::run_in;
 
 namespace {
 
@@ -90,28 +96,6 @@ std::string real_png(int size) {
   for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(i * 37);
   const auto bytes = gltf::encode_png(size, size, 3, pixels);
   return std::string(bytes.begin(), bytes.end());
-}
-
-struct Outcome {
-  test::RunResult run;
-  std::vector<std::string> before, after;
-};
-
-// Runs the CLI in `dir` and records the folder's listing around it.
-Outcome run_in(const fs::path& dir, const std::string& args, int seconds = 60) {
-  Outcome o;
-  o.before = test::listing(dir);
-  o.run = test::run_cli_within(seconds, args, dir);
-  o.after = test::listing(dir);
-  return o;
-}
-
-void expect_refused(const Outcome& o, const std::string& where, const std::string& message) {
-  INFO(o.run.err);
-  CHECK(o.run.exit_code == 2);
-  CHECK(o.run.err.find(where) != std::string::npos);
-  CHECK(o.run.err.find(message) != std::string::npos);
-  CHECK(o.before == o.after);  // nothing written
 }
 
 // Every command that reads a material, with an output in the folder where one is written.
@@ -225,6 +209,39 @@ TEST_CASE("a truncated PNG is a user mistake at its file parameter, with lamina'
                    "truncated");
     CHECK(o.run.err.find("libpng") == std::string::npos);
   }
+}
+
+TEST_CASE("an image holding NaN or an infinite texel is refused where it is named: no clamp could remove it") {
+  // A 2 x 1 float OpenEXR made by oiiotool from a portable float map (PFM: "PF", size, negative
+  // scale for little-endian, then RGB rows); the second texel's green is the hostile value.
+  test::TempDir dir;
+  auto exr = [&](float green) {
+    const float texels[6] = {0.5f, 0.5f, 0.5f, 0.25f, green, 0.25f};
+    std::string pfm = "PF\n2 1\n-1.0\n";
+    pfm.append(reinterpret_cast<const char*>(texels), sizeof texels);
+    write(dir.path() / "texels.pfm", pfm);
+    REQUIRE(std::system(("oiiotool '" + (dir.path() / "texels.pfm").string() + "' -d float -o '" +
+                         (dir.path() / "texels.exr").string() + "' >/dev/null 2>&1")
+                            .c_str()) == 0);
+    std::string bytes = test::read_file(dir.path() / "texels.exr");
+    fs::remove(dir.path() / "texels.pfm");
+    fs::remove(dir.path() / "texels.exr");
+    return bytes;
+  };
+  for (float hostile : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    CAPTURE(hostile);
+    const std::string bytes = exr(hostile);
+    CHECK_THROWS_WITH_AS(decode_linear_image(bytes, false, kDefaultMaxImagePixels),
+                         doctest::Contains("texel (1, 0) is not a finite number"), ImageError);
+    write(dir.path() / "hostile.exr", bytes);
+    write(dir.path() / "hostile.json", material_with("[1, 1, 1]", "hostile.exr"));
+    for (const std::string& command : kMaterialCommands) {
+      CAPTURE(command);
+      expect_refused(run_in(dir.path(), command_on(command, "hostile.json")),
+                     "hostile.json:/materials/0/nodes/2/file: texture file 'hostile.exr'", "not a finite number");
+    }
+  }
+  CHECK(decode_linear_image(exr(2.0f), false, kDefaultMaxImagePixels)->texels[1].g == 2.0f);
 }
 
 TEST_CASE("texture references that leave the asset folder, or name what is not a regular file, are refused") {
@@ -404,6 +421,43 @@ TEST_CASE("keys and strings are echoed with control characters escaped, so no me
     CHECK(o.run.err.compare(start, 12, "forged.json:") == 0);
     start = end == std::string::npos ? o.run.err.size() : end + 1;
   }
+}
+
+TEST_CASE("messages quote a hostile key or string by its start and length, not all of it") {
+  test::TempDir dir;
+  const std::string key(10000, 'k');
+  write(dir.path() / "long_key.json",
+        R"({"format": 1, "materials": [{"name": "m", "surface": "@b", "nodes": [{"id": "b",
+            "type": "substrate/lambert", "albedo": [1, 1, 1], ")" +
+            key + R"(": {"x": [1, }}]}]})");
+  const Outcome o = run_in(dir.path(), "validate long_key.json");
+  expect_refused(o, "long_key.json:/materials/0/nodes/0/" + key.substr(0, 32) + "...(a key of 10000 bytes)/x/1",
+                 "malformed JSON");
+  CHECK(o.run.err.size() < 1000);
+  // An unterminated string of 100,000 bytes: the parser's quote of it keeps its last bytes.
+  write(dir.path() / "open_string.json", "{\"format\": 1, \"materials\": \"" + std::string(100000, 's') + "\u0001");
+  const Outcome s = run_in(dir.path(), "validate open_string.json");
+  expect_refused(s, "open_string.json:/materials: malformed JSON", "(the last 64 of 1000");
+  CHECK(s.run.err.size() < 1000);
+}
+
+TEST_CASE("a file reference longer than any path is refused by its start and length, before it is resolved") {
+  test::TempDir dir;
+  const std::string name = std::string(kMaxReferenceLength - 4, 'a') + ".png";  // exactly the limit
+  const std::string longer = "a" + name;
+  write(dir.path() / "long.json", material_with("[1, 1, 1]", longer));
+  for (const std::string& command : kMaterialCommands) {
+    CAPTURE(command);
+    const Outcome o = run_in(dir.path(), command_on(command, "long.json"));
+    expect_refused(o, "long.json:/materials/0/nodes/2/file: texture file '" + longer.substr(0, 64) + "...'",
+                   "is longer than any path lamina follows (4096 bytes)");
+    CHECK(o.run.err.size() < 1000);
+  }
+  // At the limit it is an ordinary path: not found (no file system takes 4096-byte names).
+  write(dir.path() / "limit.json", material_with("[1, 1, 1]", name));
+  const Outcome at_limit = run_in(dir.path(), "validate limit.json");
+  CHECK(at_limit.run.exit_code == 2);
+  CHECK(at_limit.run.err.find("longer than any path") == std::string::npos);
 }
 
 TEST_CASE("a material name of 100,000 characters is refused by every command, not rendered as a label") {
