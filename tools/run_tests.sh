@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds lamina twice, optimised and with ASan+UBSan, and runs the whole test suite on each.
+# Builds lamina twice, optimised (GCC) and with ASan+UBSan (clang), runs the whole test suite on
+# each, then runs every fuzz target of the sanitised build for 30 seconds (tools/run_fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
@@ -11,3 +12,5 @@ for variant in release asan; do
   echo "== $variant tests"
   (cd "build/$variant" && ctest --output-on-failure -j "$(nproc)")
 done
+echo "== fuzz"
+bash tools/run_fuzz.sh 30 build/asan

@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(cmake ninja-build g++ libembree-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
   libglm-dev libpng-dev doctest-dev libcli11-dev libbenchmark-dev clang-format glslang-tools
   fonts-dejavu-core
+  # clang with its sanitizer and libFuzzer runtimes: the asan build and the fuzzers of tests/fuzz
+  clang libclang-rt-14-dev
   # headless OpenGL and GL ES on the CPU (Mesa llvmpipe through EGL) for the GLSL parity tests
   libegl-dev libgl-dev libopengl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri)
 missing=()

@@ -55,7 +55,8 @@ TEST_CASE("the course examples fall into the course's classes") {
                                                        {"fabric", "h"}};
   size_t seen = 0;
   for (const auto& [name, letter] : expected) {
-    CAPTURE(name);
+    const std::string& material = name;  // clang 14 cannot capture a structured binding
+    CAPTURE(material);
     CheckedFile checked = check_file(test::source_dir() / "examples/materials" / (name + ".json"));
     REQUIRE(checked.ok());
     Classification c = classify(*checked.graphs[0]);

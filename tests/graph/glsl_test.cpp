@@ -344,8 +344,10 @@ TEST_CASE("glsl: a kernel function is in a module exactly when a node of the mat
       };
       for (bool uniforms : {false, true}) {
         std::set<std::string> names = glsl::identifiers(generate({p}, glsl::Target::Glsl450, uniforms));
-        for (const auto& [function, needed] : expected)
-          CHECK_MESSAGE(bool(names.count(function)) == needed, p.name << ": " << function);
+        for (const auto& [function, needed] : expected) {
+          const std::string& identifier = function;  // clang 14 cannot capture a structured binding
+          CHECK_MESSAGE(bool(names.count(identifier)) == needed, p.name << ": " << identifier);
+        }
       }
     }
   }

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer program of tests/fuzz for a bounded time, each from its seed corpus
+# (tests/fuzz/seeds.txt) and its regression corpus, and prints executions and executions per
+# second per target. Each program finds its dictionary itself (tests/fuzz/fuzz_main.cpp). Exits 1 on the first finding, after saying where the failing input is kept and
+# how to add it to the regression corpus that the ordinary test suite replays.
+#
+# Usage: tools/run_fuzz.sh [SECONDS_PER_TARGET] [BUILD_DIR] [TARGET...]   (defaults: 30, build/asan, all)
+# The programs come from the asan build (tools/build.sh asan: clang, ASan, UBSan, libFuzzer).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-30}
+build=${2:-build/asan}
+work=$(mktemp -d "${TMPDIR:-/tmp}/lamina-fuzz.XXXXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+targets=$(ls "$build"/tests/fuzz/fuzz_* 2>/dev/null | sed 's|.*/fuzz_||' | sort)
+shift $(($# < 2 ? $# : 2))
+[ $# -gt 0 ] && targets="$*"
+[ -n "$targets" ] || { echo "run_fuzz: no fuzz programs in $build/tests/fuzz (build with tools/build.sh asan)" >&2; exit 2; }
+
+# Leak checks on; a slow or bloated input is a finding too (the limits of graph/limits.h keep every
+# valid input far below these).
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+for target in $targets; do
+  seeds="$work/$target/seeds"
+  corpus="$work/$target/corpus"
+  artifacts="$work/$target/artifacts"
+  mkdir -p "$seeds" "$corpus" "$artifacts"
+  # Seeds: the files seeds.txt lists for this target, and every input that once failed.
+  while read -r name folder extension; do
+    [ "$name" = "$target" ] || continue
+    for f in "$folder"/*"$extension"; do [ -f "$f" ] && cp "$f" "$seeds/"; done
+  done < <(grep -v '^#' tests/fuzz/seeds.txt)
+  [ -d "tests/fuzz/regressions/$target" ] && cp tests/fuzz/regressions/"$target"/* "$seeds/" 2>/dev/null || true
+  log="$work/$target.log"
+  if "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$seeds" >"$log" 2>&1; then
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
+    cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+    printf 'fuzz %-12s %9s executions in %ss, %6s per second, %6s edges covered, %5s corpus files\n' \
+      "$target" "$runs" "$seconds" "$rate" "${cov:-?}" "$(ls "$corpus" | wc -l)"
+  else
+    status=1
+    echo "fuzz $target: FINDING" >&2
+    grep -E 'ERROR|SUMMARY|what\(\)|terminate|Finding|deadly|timeout|out-of-memory' "$log" | head -20 >&2
+    for a in "$artifacts"/*; do
+      [ -f "$a" ] || continue
+      keep="tests/fuzz/regressions/$target/$(sha1sum "$a" | cut -c1-16)"
+      mkdir -p "tests/fuzz/regressions/$target"
+      cp "$a" "$keep"
+      echo "  the input is now $keep: fix the cause, then commit it (the test suite replays it)" >&2
+    done
+    tail -40 "$log" >&2
+  fi
+done
+exit $status
