@@ -32,6 +32,12 @@ inline constexpr std::uint64_t kMaxBinaryFileBytes = std::uint64_t{1} << 30;  //
 inline constexpr std::uint64_t kDefaultMaxImagePixels = std::uint64_t{1} << 26;
 // Each side of an image, whatever the budget (OpenImageIO's sizes are ints).
 inline constexpr std::uint64_t kMaxImageSide = std::uint64_t{1} << 20;
+// A stored pixel: at most as many channels, of at most as many bits, as a decoded texel (4 floats),
+// so that a decoder's buffers never outgrow the image they decode.
+inline constexpr std::uint64_t kMaxImageChannels = 4;
+inline constexpr std::uint64_t kMaxImageSampleBits = 32;
+// A PNG's ancillary chunk (text, colour profile) as read and as decompressed.
+inline constexpr size_t kMaxPngChunkBytes = size_t{8} << 20;
 
 // A scene: the distinct shapes its objects use (a built-in shape per distinct size and
 // tessellation, a mesh file once however often it is placed) have at most this many vertices in

@@ -71,6 +71,9 @@ bool png_read_header(png_structp png, png_infop info, PngState& state, PngLayout
   if (setjmp(state.jump)) return false;
   png_set_read_fn(png, &state, png_read_bytes);
   png_set_user_limits(png, static_cast<png_uint_32>(kMaxImageSide), static_cast<png_uint_32>(kMaxImageSide));
+  // Text and colour-profile chunks decompress into a buffer of their own: without a cap, a small
+  // zTXt chunk could inflate to gigabytes. Pixels (IDAT) are streamed and not limited by it.
+  png_set_chunk_malloc_max(png, kMaxPngChunkBytes);
   png_read_info(png, info);
   layout.width = png_get_image_width(png, info);
   layout.height = png_get_image_height(png, info);
@@ -172,6 +175,30 @@ std::string oiio_error(const OIIO::ImageInput* input) {
   return why.empty() ? "decoding failed" : why;
 }
 
+// The bytes as OpenImageIO's readers see them. OpenImageIO 2.4's own IOMemReader copies past its
+// buffer when asked to read at an offset beyond its end (a fuzzer found a tiled OpenEXR whose tile
+// offsets point there); this one reads nothing there.
+class MemoryReader final : public OIIO::Filesystem::IOProxy {
+ public:
+  explicit MemoryReader(std::string_view bytes) : IOProxy("", Read), bytes_(bytes) {}
+  const char* proxytype() const override { return "lamina-memory"; }
+  size_t read(void* out, size_t count) override {
+    const size_t n = pread(out, count, m_pos);
+    m_pos += static_cast<std::int64_t>(n);
+    return n;
+  }
+  size_t pread(void* out, size_t count, std::int64_t offset) override {
+    if (offset < 0 || static_cast<std::uint64_t>(offset) >= bytes_.size()) return 0;
+    const size_t n = std::min(count, bytes_.size() - static_cast<size_t>(offset));
+    std::memcpy(out, bytes_.data() + offset, n);
+    return n;
+  }
+  size_t size() const override { return bytes_.size(); }
+
+ private:
+  std::string_view bytes_;
+};
+
 // OpenImageIO's name for the reader of a format.
 const char* oiio_reader(ImageFormat format) {
   switch (format) {
@@ -191,7 +218,7 @@ std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const ImageHead
   const std::string format = format_name(header.format);
   auto input = OIIO::ImageInput::create(oiio_reader(header.format));
   if (!input) throw ImageError("cannot start the " + format + " decoder: " + oiio_error(nullptr));
-  OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+  MemoryReader proxy(bytes);
   if (!input->set_ioproxy(&proxy))
     throw ImageError("cannot start the " + format + " decoder: " + oiio_error(input.get()));
   OIIO::ImageSpec config;
@@ -217,7 +244,9 @@ std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const ImageHead
   // image is read a row of tiles at a time (OpenImageIO 2.4's read_scanlines divides by zero on
   // tiled files).
   const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
-  const int band_rows = std::min(spec.height, tiled ? spec.tile_height : 64);
+  // Bands of scanlines hold up to 64 rows and about a million pixels, so the decoder's copy of
+  // them stays small beside the texels.
+  const int band_rows = std::min(spec.height, tiled ? spec.tile_height : std::clamp((1 << 20) / spec.width, 1, 64));
   std::vector<float> band(static_cast<size_t>(spec.width) * static_cast<size_t>(band_rows) *
                           static_cast<size_t>(channels));
   for (int y = 0; y < spec.height; y += band_rows) {

@@ -1,5 +1,6 @@
 #include "graph/cpu/image_header.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "graph/limits.h"
@@ -67,7 +68,9 @@ class HeaderBytes {
   bool big_endian_;
 };
 
-// PNG (ISO/IEC 15948 sec. 11.2.2): the IHDR chunk comes first, right after the signature.
+// PNG (ISO/IEC 15948 sec. 5.3 and 11.2.2): the IHDR chunk comes first, right after the signature;
+// libpng allocates each chunk's declared length before reading it, so every chunk up to IEND must
+// lie inside the file.
 ImageHeader png_header(std::string_view bytes) {
   const HeaderBytes b(bytes, ImageFormat::Png, true);
   if (b.u32(8, "the IHDR chunk's length") != 13 || bytes.substr(12, 4) != "IHDR")
@@ -76,6 +79,21 @@ ImageHeader png_header(std::string_view bytes) {
   h.format = ImageFormat::Png;
   h.width = b.u32(16, "the image width");
   h.height = b.u32(20, "the image height");
+  h.bits = b.u8(24, "the bit depth");
+  const std::uint64_t colour = b.u8(25, "the colour type");
+  // Grey, RGB (or a palette of RGB), grey with alpha, RGB with alpha (sec. 11.2.2, table 11.1).
+  h.channels = colour == 0 ? 1 : colour == 2 || colour == 3 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 0;
+  if (h.channels == 0) b.fail("colour type " + count_text(colour) + " is not one of PNG's");
+  for (std::uint64_t p = 8;;) {
+    if (!b.has(p, 8)) b.fail("the file is truncated: it ends at byte " + count_text(p) + " without an IEND chunk");
+    const std::uint64_t length = b.u32(p, "a chunk length");
+    const std::string_view type = bytes.substr(p + 4, 4);
+    if (length > 0x7fffffffu || !b.has(p + 8, length + 4))
+      b.fail("the file is truncated: chunk '" + std::string(type) + "' at byte " + count_text(p) + " declares " +
+             count_text(length) + " bytes, beyond the end of the " + count_text(b.size()) + "-byte file");
+    if (type == "IEND") break;
+    p += 12 + length;
+  }
   return h;
 }
 
@@ -99,8 +117,10 @@ ImageHeader jpeg_header(std::string_view bytes) {
       if (length < 8) b.fail("the frame header is shorter than 8 bytes");
       ImageHeader h;
       h.format = ImageFormat::Jpeg;
+      h.bits = b.u8(p + 2, "the sample precision");
       h.height = b.u16(p + 3, "the image height");
       h.width = b.u16(p + 5, "the image width");
+      h.channels = b.u8(p + 7, "the component count");
       if (h.height == 0) b.fail("the frame header leaves the height to a later DNL marker, which lamina does not read");
       return h;
     }
@@ -123,7 +143,8 @@ ImageHeader openexr_header(std::string_view bytes) {
 
   ImageHeader h;
   h.format = ImageFormat::OpenExr;
-  bool data_window = false, channels = false, tiles = false;
+  bool data_window = false, channels = false;
+  std::uint64_t compression = 0;
   std::uint64_t p = 8;
   for (;;) {
     const std::string_view name = b.c_string(p, max_name, "an attribute name");
@@ -154,16 +175,26 @@ ImageHeader openexr_header(std::string_view bytes) {
         const std::string_view channel = value.c_string(q, max_name, "a channel name");
         q += channel.size() + 1;
         if (channel.empty()) break;
-        value.require(q, 16, "the description of channel '" + std::string(channel) + "'");
+        const std::string what = "the description of channel '" + std::string(channel) + "'";
+        value.require(q, 16, what);
+        // Pixel type 0 (uint), 1 (half), 2 (float).
+        const std::uint64_t type_code = value.u32(q, what);
+        if (type_code > 2) b.fail("channel '" + std::string(channel) + "' has an unknown pixel type");
+        h.bits = std::max<std::uint64_t>(h.bits, type_code == 1 ? 16 : 32);
+        ++h.channels;
         q += 16;
         channels = true;
       }
     } else if (type == "tiledesc" && name == "tiles") {
       if (length != 9) b.fail("the tile description is not 9 bytes");
-      h.tile_width = b.u32(p, "the tile width");
-      h.tile_height = b.u32(p + 4, "the tile height");
-      if (h.tile_width == 0 || h.tile_height == 0) b.fail("a tile size of 0");
-      tiles = true;
+      h.chunk_width = b.u32(p, "the tile width");
+      h.chunk_height = b.u32(p + 4, "the tile height");
+      if (h.chunk_width == 0 || h.chunk_height == 0) b.fail("a tile size of 0");
+      h.tiled = true;
+    } else if (type == "compression" && name == "compression") {
+      if (length != 1) b.fail("the compression is not 1 byte");
+      compression = b.u8(p, "the compression");
+      if (compression > 9) b.fail("unknown compression " + count_text(compression));
     } else if (type == "preview") {
       // Width and height, then 4 bytes a pixel: the decoder allocates what they declare.
       if (length < 8) b.fail("the preview image is shorter than its own size fields");
@@ -185,7 +216,14 @@ ImageHeader openexr_header(std::string_view bytes) {
   }
   if (!data_window) b.fail("the header has no dataWindow");
   if (!channels) b.fail("the header names no channel");
-  if ((version & kTiled) && !tiles) b.fail("a tiled file without a tile description");
+  if ((version & kTiled) && !h.tiled) b.fail("a tiled file without a tile description");
+  if (!h.tiled) {
+    // Scanlines come in blocks whose height the compression sets: none, RLE and ZIPS 1, ZIP and
+    // PXR24 16, PIZ, B44, B44A and DWAA 32, DWAB 256.
+    constexpr std::uint64_t kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    h.chunk_width = h.width;
+    h.chunk_height = kLines[compression];
+  }
   return h;
 }
 
@@ -228,6 +266,8 @@ ImageHeader radiance_header(std::string_view bytes) {
   h.format = ImageFormat::RadianceHdr;
   h.width = axes[0] == 'X' ? counts[0] : counts[1];
   h.height = axes[0] == 'Y' ? counts[0] : counts[1];
+  h.channels = 3;  // RGBE or XYZE: a shared exponent, decoded to three floats
+  h.bits = 32;
   return h;
 }
 
@@ -250,10 +290,15 @@ ImageHeader tiff_header(std::string_view bytes) {
   b.require(first, count * entry_size, "the first directory");
   ImageHeader h;
   h.format = ImageFormat::Tiff;
+  h.channels = 1;  // TIFF's defaults: one sample of one bit
+  h.bits = 1;
+  std::uint64_t bits_entry = 0, rows_per_strip = 0xffffffffu;  // TIFF's default: one strip
   for (std::uint64_t e = 0; e < count; ++e) {
     const std::uint64_t at = first + e * entry_size;
     const std::uint64_t tag = b.u16(at, "a tag");
-    if (tag != 256 && tag != 257 && tag != 322 && tag != 323) continue;
+    const bool size_tag = tag == 256 || tag == 257 || tag == 322 || tag == 323 || tag == 277 || tag == 278;
+    if (tag == 258) bits_entry = at;
+    if (!size_tag) continue;
     const std::uint64_t type = b.u16(at + 2, "a tag's type");
     const std::uint64_t values = big ? b.u64(at + 4, "a tag's count") : b.u32(at + 4, "a tag's count");
     const std::uint64_t field = at + (big ? 12 : 8);
@@ -266,12 +311,39 @@ ImageHeader tiff_header(std::string_view bytes) {
     else if (values == 1 && type == 16 && big)
       value = b.u64(field, "a size tag");
     else
-      b.fail("size tag " + count_text(tag) + " is not one SHORT or LONG value");
-    (tag == 256 ? h.width : tag == 257 ? h.height : tag == 322 ? h.tile_width : h.tile_height) = value;
+      b.fail("tag " + count_text(tag) + " is not one SHORT or LONG value");
+    (tag == 256   ? h.width
+     : tag == 257 ? h.height
+     : tag == 322 ? h.chunk_width
+     : tag == 323 ? h.chunk_height
+     : tag == 277 ? h.channels
+                  : rows_per_strip) = value;
+  }
+  if (bits_entry) {
+    // BitsPerSample: a SHORT per sample, in the entry when they fit, else at the offset it holds.
+    if (b.u16(bits_entry + 2, "the type of BitsPerSample") != 3) b.fail("BitsPerSample is not of type SHORT");
+    const std::uint64_t values =
+        big ? b.u64(bits_entry + 4, "BitsPerSample's count") : b.u32(bits_entry + 4, "BitsPerSample's count");
+    if (values == 0 || values > h.channels) b.fail("BitsPerSample gives " + count_text(values) + " values");
+    const std::uint64_t field = bits_entry + (big ? 12 : 8);
+    const std::uint64_t inline_bytes = big ? 8 : 4;
+    const std::uint64_t at = values * 2 <= inline_bytes ? field
+                             : big                      ? b.u64(field, "BitsPerSample's offset")
+                                                        : b.u32(field, "BitsPerSample's offset");
+    h.bits = 0;
+    for (std::uint64_t i = 0; i < values; ++i) h.bits = std::max(h.bits, b.u16(at + 2 * i, "a BitsPerSample value"));
   }
   if (h.width == 0 || h.height == 0) b.fail("the first directory gives no image width and length");
-  if ((h.tile_width == 0) != (h.tile_height == 0))
+  if ((h.chunk_width == 0) != (h.chunk_height == 0))
     b.fail("the first directory gives only one of tile width and length");
+  h.tiled = h.chunk_width > 0;
+  if (!h.tiled) {
+    // OpenImageIO 2.4 allocates RowsPerStrip rows for a strip, even beyond the image's height;
+    // only TIFF's "one strip" value, 2^32 - 1, stands for the image's height.
+    h.chunk_width = h.width;
+    h.chunk_height = rows_per_strip == 0xffffffffu ? h.height : rows_per_strip;
+    if (h.chunk_height == 0) b.fail("RowsPerStrip is 0");
+  }
   return h;
 }
 
@@ -306,12 +378,13 @@ std::string format_name(ImageFormat format) {
   return "image";
 }
 
-ImageHeader read_image_header(std::string_view bytes) {
+namespace {
+
+ImageHeader header_of(std::string_view bytes) {
   ImageFormat format;
   if (!image_format_of(bytes, format))
     throw ImageError(
-        "not an image format lamina reads (PNG, JPEG, OpenEXR, Radiance HDR or TIFF, told by the "
-        "file's first bytes)");
+        "not an image format lamina reads (PNG, JPEG, OpenEXR, Radiance HDR or TIFF, told by the file's first bytes)");
   switch (format) {
     case ImageFormat::Png: return png_header(bytes);
     case ImageFormat::Jpeg: return jpeg_header(bytes);
@@ -320,6 +393,22 @@ ImageHeader read_image_header(std::string_view bytes) {
     case ImageFormat::Tiff: return tiff_header(bytes);
   }
   throw ImageError("not an image format lamina reads");
+}
+
+}  // namespace
+
+ImageHeader read_image_header(std::string_view bytes) {
+  ImageHeader h = header_of(bytes);
+  // A decoder's buffers hold the file's own pixels, all channels of them: no more than the 4
+  // floats a texel has, so that decoding never needs more than a few times the decoded image.
+  if (h.channels < 1 || h.channels > kMaxImageChannels)
+    throw ImageError("the image has " + count_text(h.channels) + " channels; lamina reads images of 1 to " +
+                     count_text(kMaxImageChannels) +
+                     " (keep the ones a texture needs, e.g. with oiiotool --ch R,G,B,A)");
+  if (h.bits < 1 || h.bits > kMaxImageSampleBits)
+    throw ImageError("the image has samples of " + count_text(h.bits) + " bits; lamina reads samples of at most " +
+                     count_text(kMaxImageSampleBits));
+  return h;
 }
 
 std::string image_budget_problem(const ImageHeader& header, std::uint64_t max_pixels) {
@@ -331,9 +420,10 @@ std::string image_budget_problem(const ImageHeader& header, std::uint64_t max_pi
   if (header.width * header.height > max_pixels)
     return "the image is " + size + ", more than the budget of " + count_text(max_pixels) +
            " pixels (raise it with --max-image-pixels)";
-  if (header.tile_width > kMaxImageSide || header.tile_height > kMaxImageSide ||
-      header.tile_width * header.tile_height > max_pixels)
-    return "the image is stored in tiles of " + count_text(header.tile_width) + " x " + count_text(header.tile_height) +
+  if (header.chunk_width > kMaxImageSide || header.chunk_height > kMaxImageSide ||
+      header.chunk_width * header.chunk_height > max_pixels)
+    return "the image is stored in " + std::string(header.tiled ? "tiles" : "blocks of rows") + " of " +
+           count_text(header.chunk_width) + " x " + count_text(header.chunk_height) +
            " pixels, more than the budget of " + count_text(max_pixels) + " pixels (raise it with --max-image-pixels)";
   return "";
 }

@@ -29,10 +29,15 @@ struct ImageHeader {
   ImageFormat format = ImageFormat::Png;
   std::uint64_t width = 0;
   std::uint64_t height = 0;
-  // Tiled OpenEXR and TIFF files are decoded a tile at a time: the decoder allocates a whole tile
-  // whatever the image's size. 0 for images stored by rows.
-  std::uint64_t tile_width = 0;
-  std::uint64_t tile_height = 0;
+  // The block a decoder reads and allocates at once, whatever the image's size: a tile, a TIFF
+  // strip, an OpenEXR block of scanlines. 0 x 0 for images decoded row by row (PNG, JPEG, HDR).
+  std::uint64_t chunk_width = 0;
+  std::uint64_t chunk_height = 0;
+  bool tiled = false;
+  // What a stored pixel holds: channels (all of them, also those lamina does not use) and the
+  // largest sample size in bits.
+  std::uint64_t channels = 0;
+  std::uint64_t bits = 0;
 };
 
 // The format the bytes' signature names, or false when it is none of lamina's.
@@ -42,10 +47,11 @@ bool image_format_of(std::string_view bytes, ImageFormat& format);
 std::string format_name(ImageFormat format);
 
 // The header of an encoded image, read without decoding a pixel and without trusting any length
-// it declares. Throws ImageError for an unknown format or a malformed header.
+// it declares. Throws ImageError for an unknown format, a malformed header, or pixels of more than
+// kMaxImageChannels channels or samples of more than kMaxImageSampleBits bits.
 ImageHeader read_image_header(std::string_view bytes);
 
-// Why the image is refused under `max_pixels` (its size, a side beyond kMaxImageSide, or tiles
+// Why the image is refused under `max_pixels` (its size, a side beyond kMaxImageSide, or chunks
 // larger than the budget), or "" when it fits.
 std::string image_budget_problem(const ImageHeader& header, std::uint64_t max_pixels);
 

@@ -79,9 +79,10 @@ TEST_CASE("the header lamina reads gives the size every decoder then decodes, fo
     CHECK(header.height == static_cast<std::uint64_t>(image->height));
     CHECK(header.width > 0);
   }
-  CHECK(read_image_header(seed("tiled.exr")).tile_width == 4);
-  CHECK(read_image_header(seed("tiled.tif")).tile_height == 16);
-  CHECK(read_image_header(seed("float.exr")).tile_width == 0);
+  CHECK(read_image_header(seed("tiled.exr")).chunk_width == 4);
+  CHECK(read_image_header(seed("tiled.tif")).chunk_height == 16);
+  CHECK(read_image_header(seed("tiled.tif")).tiled);
+  CHECK(!read_image_header(seed("float.exr")).tiled);
 }
 
 TEST_CASE("formats lamina does not read are refused by their bytes, whatever the file is called") {
@@ -223,4 +224,61 @@ TEST_CASE("a tiled image decodes to the same texels as the same image stored by 
     CHECK(tiles->texels == rows->texels);
     CHECK(tiles->texels.back().r > 0.9f);  // the bottom row is the fill's bottom colour
   }
+}
+
+TEST_CASE("a PNG chunk that declares more bytes than the file holds is refused before libpng allocates it") {
+  // A fuzzer found libpng allocating a chunk's declared 2 GB in png_read_info.
+  std::string png = seed("rgb.png");
+  const size_t idat = png.find("IDAT");
+  REQUIRE(idat != std::string::npos);
+  const std::string text = std::string("\x7f\x00\x00\x64tEXt", 8) + "comment";
+  png.insert(idat - 4, text);
+  CHECK(refusal(png).find("the file is truncated: chunk 'tEXt' at byte") != std::string::npos);
+  CHECK(refusal(png).find("declares 2130706532 bytes, beyond the end of the") != std::string::npos);
+  const std::string cut = refusal(seed("rgb.png").substr(0, 60));
+  CHECK(cut.find("not a valid PNG image: the file is truncated") == 0);
+}
+
+TEST_CASE("a stored pixel holds at most the 4 channels of 32 bits a decoded texel has") {
+  // A decoder's buffers hold every channel of the file: a 64-channel EXR would make them 16 times
+  // the texels. The message says how to keep the channels a texture needs.
+  const std::string five = made_by_oiiotool("4x4 5 -d half", "exr");
+  CHECK(refusal(five).find("the image has 5 channels; lamina reads images of 1 to 4") == 0);
+  CHECK(refusal(five).find("oiiotool --ch R,G,B,A") != std::string::npos);
+  const std::string doubles = made_by_oiiotool("4x4 3 -d double", "tif");
+  CHECK(refusal(doubles).find("the image has samples of 64 bits; lamina reads samples of at most 32") == 0);
+  CHECK(read_image_header(made_by_oiiotool("4x4 4 -d float", "exr")).channels == 4);
+}
+
+TEST_CASE("a TIFF strip or an OpenEXR block of rows larger than the budget is refused before it is allocated") {
+  // A fuzzer found OpenImageIO allocating RowsPerStrip rows (385,876,256 of them: 20 TB) for a
+  // strip of a 10-row TIFF.
+  std::string tiff = seed("float.tif");
+  std::uint32_t directory = 0;
+  std::memcpy(&directory, tiff.data() + 4, 4);
+  std::uint16_t entries = 0;
+  std::memcpy(&entries, tiff.data() + directory, 2);
+  bool found = false;
+  for (std::uint32_t e = 0; e < entries; ++e) {
+    const size_t at = directory + 2 + 12 * e;
+    std::uint16_t tag = 0;
+    std::memcpy(&tag, tiff.data() + at, 2);
+    if (tag != 278) continue;  // RowsPerStrip, made a LONG
+    const std::uint16_t type_long = 4;
+    std::memcpy(tiff.data() + at + 2, &type_long, 2);
+    put_u32(tiff, at + 8, 385876256u);
+    found = true;
+  }
+  REQUIRE(found);
+  const ImageHeader header = read_image_header(tiff);
+  CHECK(header.chunk_height == 385876256u);
+  CHECK(image_budget_problem(header, kDefaultMaxImagePixels).find("stored in blocks of rows of 2 x 385876256") !=
+        std::string::npos);
+  // The usual strip heights pass: OpenImageIO writes 32-row strips even for a 2-row image.
+  CHECK(image_budget_problem(read_image_header(seed("float.tif")), kDefaultMaxImagePixels).empty());
+  // A DWAB-compressed OpenEXR (compression 9) decodes 256 rows at a time, however few it has.
+  std::string exr = seed("float.exr");
+  exr[exr_attribute_value(exr, "compression", "compression")] = 9;
+  CHECK(read_image_header(exr).chunk_height == 256);
+  CHECK(image_budget_problem(read_image_header(exr), 1000).find("blocks of rows of 4 x 256") != std::string::npos);
 }
