@@ -160,10 +160,16 @@ static size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
+std::string Suggester::closest(std::string_view word, const std::vector<std::string>& candidates) {
   std::string best;
   size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
   for (const auto& candidate : candidates) {
+    if (left_ == 0) break;
+    --left_;
+    // The distance is at least the difference in length: no need to compute it then.
+    const size_t length_gap =
+        word.size() > candidate.size() ? word.size() - candidate.size() : candidate.size() - word.size();
+    if (length_gap >= best_distance) continue;
     size_t d = edit_distance(word, candidate);
     if (d < best_distance) {
       best_distance = d;
@@ -173,12 +179,18 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
   return best;
 }
 
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
+  return Suggester().closest(word, candidates);
+}
+
 std::string join_alternatives(const std::vector<std::string>& words) {
+  const size_t listed = words.size() > kListedAlternatives ? kListedAlternatives - 1 : words.size();
   std::string out;
-  for (size_t i = 0; i < words.size(); ++i) {
+  for (size_t i = 0; i < listed; ++i) {
     if (i > 0) out += (i + 1 == words.size()) ? " or " : ", ";
     out += words[i];
   }
+  if (listed < words.size()) out += ", ... and " + std::to_string(words.size() - listed) + " more";
   return out;
 }
 

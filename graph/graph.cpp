@@ -127,7 +127,7 @@ std::optional<Graph> Graph::build(const Material& material, const std::string& f
                      const std::string& what) -> std::optional<std::pair<size_t, const OutputDecl*>> {
     auto it = index.find(link.node);
     if (it == index.end()) {
-      std::string suggestion = closest_match(link.node, ids);
+      std::string suggestion = diagnostics.suggest(link.node, ids);
       error(pointer, "link to unknown node " + quote_excerpt(link.node, '\''),
             suggestion.empty() ? "node ids in this material: " + join_alternatives(ids)
                                : "did you mean '@" + suggestion + "'?");

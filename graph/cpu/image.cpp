@@ -175,13 +175,13 @@ std::string oiio_error(const OIIO::ImageInput* input) {
   return why.empty() ? "decoding failed" : why;
 }
 
-// The bytes as OpenImageIO's readers see them. OpenImageIO 2.4's own IOMemReader copies past its
+// The bytes as OpenImageIO's readers see them. OpenImageIO 2.4's IOMemReader copies past its
 // buffer when asked to read at an offset beyond its end (a fuzzer found a tiled OpenEXR whose tile
-// offsets point there); this one reads nothing there.
-class MemoryReader final : public OIIO::Filesystem::IOProxy {
+// offsets point there); this one reads nothing there. It stays an IOMemReader because the JPEG
+// reader takes the whole buffer from that class (libjpeg then stays inside it).
+class MemoryReader final : public OIIO::Filesystem::IOMemReader {
  public:
-  explicit MemoryReader(std::string_view bytes) : IOProxy("", Read), bytes_(bytes) {}
-  const char* proxytype() const override { return "lamina-memory"; }
+  explicit MemoryReader(std::string_view bytes) : IOMemReader(bytes.data(), bytes.size()), bytes_(bytes) {}
   size_t read(void* out, size_t count) override {
     const size_t n = pread(out, count, m_pos);
     m_pos += static_cast<std::int64_t>(n);
@@ -193,7 +193,6 @@ class MemoryReader final : public OIIO::Filesystem::IOProxy {
     std::memcpy(out, bytes_.data() + offset, n);
     return n;
   }
-  size_t size() const override { return bytes_.size(); }
 
  private:
   std::string_view bytes_;

@@ -102,7 +102,11 @@ std::vector<unsigned char> png_from_any_image(const std::string& bytes, std::uin
 
 class Writer {
  public:
-  Writer(const Scene& scene, const ExportOptions& options) : scene_(scene), options_(options), buffer_(arrays_) {}
+  Writer(const Scene& scene, const ExportOptions& options) : scene_(scene), options_(options), buffer_(arrays_) {
+    // By name once: a sample sheet of thousands of materials looks each up per object.
+    for (const auto& file : scene_.material_files)
+      for (const auto& m : file.document.materials) defined_.emplace(m.name, std::make_pair(&m, &file));
+  }
 
   Export run(const std::filesystem::path& output) {
     Export result;
@@ -316,9 +320,7 @@ class Writer {
 
   int material(const std::string& name) {
     if (auto it = materials_.find(name); it != materials_.end()) return it->second;
-    const MaterialFileRef* file = nullptr;
-    const Material* m = scene_.find_material(name, &file);
-    if (!m || !file) throw std::logic_error("export_scene: the scene was not checked (material " + name + ")");
+    const auto [m, file] = defined(name);
 
     const size_t shared = fallback_of_.at(name);
     Fallback fallback = fallbacks_.at(shared);
@@ -364,6 +366,12 @@ class Writer {
     return index;
   }
 
+  std::pair<const Material*, const MaterialFileRef*> defined(const std::string& name) const {
+    const auto it = defined_.find(name);
+    if (it == defined_.end()) throw std::logic_error("export_scene: the scene was not checked (material " + name + ")");
+    return it->second;
+  }
+
   // The fallback of every material an object uses, before anything is written: materials that
   // differ only in their names (and read textures from the same folder) share one fit, and the fits
   // run on every core. Each fit is deterministic, so the output does not depend on the threads.
@@ -372,10 +380,7 @@ class Writer {
     std::map<std::string, size_t> by_content;
     for (const auto& object : scene_.objects) {
       if (fallback_of_.count(object.material)) continue;
-      const MaterialFileRef* file = nullptr;
-      const Material* m = scene_.find_material(object.material, &file);
-      if (!m || !file)
-        throw std::logic_error("export_scene: the scene was not checked (material " + object.material + ")");
+      const auto [m, file] = defined(object.material);
       Document unnamed;
       unnamed.materials.push_back(*m);
       unnamed.materials.back().name = "m";
@@ -487,8 +492,9 @@ class Writer {
   std::map<std::string, int> indices_, materials_, file_textures_;
   std::map<int, int> samplers_;
   std::vector<MaterialReport> reports_;
-  std::vector<Fallback> fallbacks_;                        // fitted by fit_fallbacks()
-  std::map<std::string, size_t> fallback_of_;              // material name -> index into fallbacks_
+  std::vector<Fallback> fallbacks_;            // fitted by fit_fallbacks()
+  std::map<std::string, size_t> fallback_of_;  // material name -> index into fallbacks_
+  std::map<std::string, std::pair<const Material*, const MaterialFileRef*>> defined_;  // by name
   std::map<std::pair<size_t, int>, int> shared_textures_;  // (fallback, which image) -> glTF texture
   int baked_count_ = 0;
 };

@@ -599,10 +599,11 @@ class SceneReader {
     std::vector<std::string> known;
     for (const auto& f : scene.material_files)
       for (const auto& m : f.document.materials) known.push_back(m.name);
+    const std::set<std::string, std::less<>> defined(known.begin(), known.end());
     for (size_t i = 0; i < scene.objects.size(); ++i) {
       const auto& name = scene.objects[i].material;
-      if (scene.find_material(name)) continue;
-      std::string suggestion = closest_match(name, known);
+      if (defined.count(name)) continue;
+      std::string suggestion = diag_.suggest(name, known);
       error(pointers[i] + "/material", "unknown material " + single_quoted(name),
             (suggestion.empty() ? std::string() : "did you mean " + single_quoted(suggestion) + "? ") +
                 "the scene's material files define " + join_alternatives(known));
