@@ -21,13 +21,12 @@ using namespace lamina;
 using test::expect_refused;
 using test::Outcome;
 using test::run_in;
+using test::write;
 
 namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-
-void write(const fs::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 std::string le32(uint32_t v) {
   return {char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char((v >> 24) & 0xff)};

@@ -4,12 +4,18 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "test_support.h"
 
 namespace lamina::test {
+
+// `bytes` as the whole content of `path`.
+inline void write(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
 
 struct Outcome {
   RunResult run;

@@ -24,15 +24,11 @@ using namespace lamina;
 using test::expect_refused;
 using test::Outcome;
 using test::run_in;
+using test::write;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-void write(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
 
 std::string nested(size_t depth, char open, char close) {
   std::string inner = open == '{' ? "1" : "";

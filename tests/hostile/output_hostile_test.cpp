@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "hostile_support.h"
 #include "test_support.h"
 
 using namespace lamina;
+using test::write;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 // Every file under `dir` with its content, to compare before and after.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
