@@ -1,0 +1,20 @@
+// The figure `lamina plot` writes: a title and legend over four BRDF-slice panels (left) and the
+// sphere (right), laid out for any width from the 1600 x 800 design.
+#pragma once
+
+#include <OpenImageIO/imagebuf.h>
+#include <glm/glm.hpp>
+#include <string>
+
+#include "graph/cpu/evaluator.h"
+#include "tools/plot_text.h"
+
+namespace lamina::cli::plot {
+
+// Draws the figure over all of `image` (3 float channels, display sRGB values): the slices at
+// `uv`, the sphere under a sky of radiance `ambient`, the title naming the material and `file`.
+// Returns false when a label could not be drawn (image.geterror() says why).
+bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
+                 glm::vec2 uv, float ambient);
+
+}  // namespace lamina::cli::plot
