@@ -291,6 +291,12 @@ class Reader {
       error(pointer, label + " is not a finite number", "JSON numbers beyond 1.8e308 overflow to infinity");
       return false;
     }
+    if (std::abs(v) > kMaxNodeNumber) {
+      static_assert(kMaxNodeNumber == 1.0e9, "the message spells out the limit");
+      error(pointer, label + " = " + number_text(v) + " is too large: expected a magnitude of at most 1e9",
+            "the back ends compute in single precision");
+      return false;
+    }
     bool below = p.lo_open ? !(v > p.lo) : v < p.lo;
     if (below || v > p.hi) {
       std::string range = p.range_text();

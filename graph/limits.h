@@ -14,6 +14,10 @@ namespace lamina {
 // 6 levels, a glTF file about 10.
 inline constexpr int kMaxJsonDepth = 128;
 
+// Every number of a node parameter: magnitude at most this (besides the parameter's own range),
+// so that it is exact enough in single precision and no sum or difference of two overflows.
+inline constexpr double kMaxNodeNumber = 1.0e9;
+
 // Material names and node ids: they become GLSL identifiers (GLSL ES allows 1024 characters in
 // one, lamina prefixes and suffixes them) and the labels of sample-sheet spheres.
 inline constexpr size_t kMaxIdentifierLength = 64;

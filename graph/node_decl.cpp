@@ -42,6 +42,10 @@ ParamDecl& ParamDecl::at_least(double low) {
   lo = low;
   return *this;
 }
+ParamDecl& ParamDecl::at_most(double high) {
+  hi = high;
+  return *this;
+}
 ParamDecl& ParamDecl::in_unit(std::string u) {
   unit = std::move(u);
   return *this;

@@ -38,6 +38,7 @@ struct ParamDecl {
   ParamDecl& range(double low, double high);
   ParamDecl& above(double low);     // low < value, no upper bound
   ParamDecl& at_least(double low);  // low <= value, no upper bound
+  ParamDecl& at_most(double high);  // value <= high, keeping the lower bound
   ParamDecl& in_unit(std::string u);
   ParamDecl& or_default(Value v);
   ParamDecl& one_of(std::vector<std::string> options);

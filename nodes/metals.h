@@ -8,6 +8,10 @@
 
 namespace lamina {
 
+// The largest n and k a conductor takes. Measured metals stay far below it in the visible (n < 10,
+// k < 15); the exact Fresnel term squares products of n and k, which overflow float near 1e19.
+inline constexpr double kMaxConductorIndex = 1000.0;
+
 struct Metal {
   std::string_view name;
   Vec3d n;

@@ -25,10 +25,11 @@ NodeDecl declare_substrate_conductor() {
                          .described("a named metal with tabulated n and k; give this or n and k"));
   d.params.push_back(param("n", ValueType::Color)
                          .above(0.0)
+                         .at_most(kMaxConductorIndex)
                          .links()
                          .described("real part of the metal's index of refraction per channel"));
   d.params.push_back(param("k", ValueType::Color)
-                         .at_least(0.0)
+                         .range(0.0, kMaxConductorIndex)
                          .links()
                          .described("extinction coefficient (imaginary part of the index) per channel"));
   add_microfacet_params(d);

@@ -5,10 +5,14 @@
 # how to add it to the regression corpus that the ordinary test suite replays.
 #
 # Usage: tools/run_fuzz.sh [SECONDS_PER_TARGET] [BUILD_DIR] [TARGET...]   (defaults: 30, build/asan, all)
+# LAMINA_FUZZ_SEED fixes libFuzzer's random seed (default 1, so that a CI run of the same code walks
+# the same inputs and a finding reproduces with the same command); 0 draws a new seed each run,
+# for long hunts.
 # The programs come from the asan build (tools/build.sh asan: clang, ASan, UBSan, libFuzzer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
+seed=${LAMINA_FUZZ_SEED:-1}
 build=${2:-build/asan}
 work=$(mktemp -d "${TMPDIR:-/tmp}/lamina-fuzz.XXXXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -35,7 +39,7 @@ for target in $targets; do
   done < <(grep -v '^#' tests/fuzz/seeds.txt)
   [ -d "tests/fuzz/regressions/$target" ] && cp tests/fuzz/regressions/"$target"/* "$seeds/" 2>/dev/null || true
   log="$work/$target.log"
-  if "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=2048 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$seeds" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")

@@ -10,6 +10,7 @@
 #include "graph/cpu/image.h"
 #include "graph/hammersley.h"
 #include "nodes/kernels/kernels.h"
+#include "nodes/metals.h"
 
 // The layered model's pinned choices are stated beside the functions that make them (eval_instance,
 // select_lobes, pdf_at). What is done once: the stack is expanded into a tree of instances (Plan),
@@ -219,8 +220,8 @@ void resolve_params(const Plan& plan, const Program& program, const float* regs,
       p.sigma = std::clamp(r.read(on->sigma), 0.0f, kPi / 2.0f);
     } else if (const auto* c = std::get_if<ConductorNode>(&s)) {
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one).
-      p.n = glm::max(r.read(c->n), vec3(1.0e-3f)) / p.n_above;
-      p.k = glm::max(r.read(c->k), vec3(0.0f)) / p.n_above;
+      p.n = glm::clamp(r.read(c->n), vec3(1.0e-3f), vec3(float(kMaxConductorIndex))) / p.n_above;
+      p.k = glm::clamp(r.read(c->k), vec3(0.0f), vec3(float(kMaxConductorIndex))) / p.n_above;
       p.m = k::lamina_effective_slope(own_slope(plan, r, in.node, c->roughness), p.m_above, plan.clamp);
     }
   }

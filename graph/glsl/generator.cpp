@@ -12,6 +12,7 @@
 #include "graph/glsl/sphere_shader.h"
 #include "graph/lobes.h"
 #include "nodes/kernels/kernels.h"
+#include "nodes/metals.h"
 
 namespace lamina::glsl {
 
@@ -289,11 +290,15 @@ class MaterialEmitter {
     std::string what = "conductor \"" + n.node + "\"" + (n.metal.empty() ? "" : " (" + n.metal + ")");
     field(sn, "n", "vec3",
           resolved(
-              n.n, n.node, "n", [](glm::vec3 c) { return glm::max(c, glm::vec3(1.0e-3f)); }, "max($, vec3(1.0e-3f))"),
+              n.n, n.node, "n",
+              [](glm::vec3 c) { return glm::clamp(c, glm::vec3(1.0e-3f), glm::vec3(float(kMaxConductorIndex))); },
+              "clamp($, vec3(1.0e-3f), vec3(" + float_literal(float(kMaxConductorIndex)) + "))"),
           what + ": absolute index");
     field(sn, "k", "vec3",
           resolved(
-              n.k, n.node, "k", [](glm::vec3 c) { return glm::max(c, glm::vec3(0.0f)); }, "max($, vec3(0.0f))"),
+              n.k, n.node, "k",
+              [](glm::vec3 c) { return glm::clamp(c, glm::vec3(0.0f), glm::vec3(float(kMaxConductorIndex))); },
+              "clamp($, vec3(0.0f), vec3(" + float_literal(float(kMaxConductorIndex)) + "))"),
           what + ": extinction");
     field(sn, "m", "float",
           resolved(

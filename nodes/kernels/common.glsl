@@ -25,6 +25,10 @@ const float LAMINA_INV_PI = 0.318309886183791f;
 // float and in GLSL highp. Not part of the pinned API; kernels use it internally.
 const float LAMINA_MIN_DENOM = 1.0e-20f;
 
+// The largest magnitude a texture operation outputs (graph/limits.h's kMaxNodeNumber, the largest a
+// node parameter may be): values past it saturate, so that chained operations stay finite.
+const float LAMINA_MAX_VALUE = 1.0e9f;
+
 LAMINA_FN float lamina_sqr(float x) { return x * x; }
 
 // Relative luminance of linear sRGB / Rec. 709 primaries (ITU-R BT.709-6, item 3.2).

@@ -11,12 +11,14 @@ LAMINA_FN float checker_value(vec2 uv, vec2 scale) {
 // Maps [in_min, in_max] linearly onto [out_min, out_max]:
 // out_min + (v - in_min) / (in_max - in_min) (out_max - out_min); with clamp_output the result
 // stays between out_min and out_max (either may be the larger). An empty input range, which the
-// graph checker rejects, gives out_min.
+// graph checker rejects, gives out_min. t and the result saturate at LAMINA_MAX_VALUE: with inputs
+// of that magnitude at most, a nearly empty range cannot overflow to inf, and no inf - inf or
+// 0 * inf makes a NaN that the next operation would pass on.
 LAMINA_FN float remap_value(float v, float in_min, float in_max, float out_min, float out_max, bool clamp_output) {
   float span = in_max - in_min;
-  float t = span != 0.0f ? (v - in_min) / span : 0.0f;
+  float t = span != 0.0f ? clamp((v - in_min) / span, -LAMINA_MAX_VALUE, LAMINA_MAX_VALUE) : 0.0f;
   if (clamp_output) t = clamp(t, 0.0f, 1.0f);
-  return out_min + t * (out_max - out_min);
+  return clamp(out_min + t * (out_max - out_min), -LAMINA_MAX_VALUE, LAMINA_MAX_VALUE);
 }
 
 // The sRGB EOTF per channel (IEC 61966-2-1:1999, sec. 5.2): c / 12.92 for c <= 0.04045, else

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "graph/limits.h"
 #include "nodes/kernels/kernels.h"
 
 namespace k = lamina::kernels;
@@ -708,6 +709,16 @@ TEST_CASE("kernels: no kernel returns NaN or inf for grazing, zero or smooth-lim
   }
   for (vec2 u : us) CHECK(is_finite(k::sample_cosine(u)));
   CHECK(is_finite(k::remap_value(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, false)));
+  // The largest numbers a file may hold, and a range so narrow that t overflows: the result
+  // saturates instead of becoming inf, and a chain of remaps never meets inf - inf.
+  CHECK(double(k::LAMINA_MAX_VALUE) == lamina::kMaxNodeNumber);
+  const float big = k::LAMINA_MAX_VALUE;
+  CHECK(k::remap_value(big, 0.0f, 1.0e-30f, -big, big, false) == big);
+  CHECK(k::remap_value(-big, 0.0f, 1.0e-30f, -big, big, false) == -big);
+  float chained = k::remap_value(big, 0.0f, 1.0e-30f, 0.0f, big, false);
+  CHECK(chained == big);
+  CHECK(k::remap_value(chained, -big, big, big, big, false) == big);
+  CHECK(is_finite(k::remap_value(big, -big, big, -big, big, false)));
   CHECK(is_finite(k::srgb_to_linear(vec3(-1.0f, 0.0f, 2.0f))));
 }
 
