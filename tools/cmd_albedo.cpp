@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "tools/commands.h"
 #include "tools/material_arg.h"
@@ -39,7 +40,7 @@ int run_albedo(const AlbedoOptions& o) {
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
   ShadingContext ctx;
   ctx.uv = glm::vec2((*uv)[0], (*uv)[1]);
-  double theta = o.theta_deg * 3.14159265358979323846 / 180.0;
+  double theta = o.theta_deg * std::numbers::pi / 180.0;
   glm::vec3 wo(float(std::sin(theta)), 0.0f, float(std::cos(theta)));
   glm::vec3 albedo = evaluator->albedo(ctx, wo, o.points);
   if (o.json) {

@@ -15,7 +15,7 @@ const char* kSphere = R"(// ====================================================
 
 uniform vec2 lamina_viewport;  // viewport size in pixels
 const vec3 lamina_light_direction = vec3(-1.0f, 1.0f, 1.0f);  // towards the light (normalised below)
-const vec3 lamina_light_irradiance = vec3(3.14159265f);      // at normal incidence
+const vec3 lamina_light_irradiance = vec3(LAMINA_PI);        // at normal incidence
 const vec3 lamina_ambient_radiance = vec3(0.08f);
 const vec3 lamina_background = vec3(0.12f, 0.12f, 0.13f);
 const int lamina_ambient_samples = 16;

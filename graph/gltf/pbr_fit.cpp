@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <numbers>
 
 #include "graph/gltf/hemisphere_quadrature.h"
 #include "graph/gltf/pbr_fit.h"
@@ -12,7 +13,6 @@ namespace lamina::gltf {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr std::array<float, 6> kViewDegrees{0.0f, 25.0f, 45.0f, 60.0f, 72.0f, 80.0f};
 // From below a 0.1 degree coat (alpha ~ 0.0017) up to a matte lobe.
 constexpr std::array<float, 5> kAlphas{0.0015f, 0.008f, 0.04f, 0.15f, 0.5f};
@@ -24,7 +24,7 @@ constexpr double kKeepRatio = 0.95;     // an extension must lower J below this 
 constexpr double kKeepAbsolute = 1e-4;  // ... and by more than this fraction of the target's own J
 
 glm::vec3 view_direction(float degrees) {
-  float theta = degrees * kPi / 180.0f;
+  float theta = degrees * std::numbers::pi_v<float> / 180.0f;
   return {std::sin(theta), 0.0f, std::cos(theta)};
 }
 

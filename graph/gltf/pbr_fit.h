@@ -24,10 +24,13 @@ struct PbrParams {
 };
 
 // The reference BRDF f(wi, wo) without the cosine, lamina's conventions (local frame, z up, both
-// directions away from the surface, 0 below the horizon). Roughness 0 (a delta lobe, which no BRDF
-// value represents) is floored at alpha = 1e-6. The specular lobe uses Appendix B's separable Smith
-// G as the specification writes it (sec. B.3.2); the clearcoat Fresnel uses N.V as
-// KHR_materials_clearcoat writes it, so f is reciprocal only when clearcoat = 0.
+// directions away from the surface, 0 below the horizon), composed from lamina's kernels
+// (nodes/kernels/*.glsl). Roughness 0 (a delta lobe, which no BRDF value represents) is floored at
+// alpha = kernels::LAMINA_MIN_SLOPE (1e-4). The specular lobe uses the separable Smith G of
+// Appendix B sec. B.3.2 as the specification wrote it until January 2026, when KhronosGroup/glTF#2541
+// replaced it with the height-correlated form to match glTF-Sample-Viewer; the
+// clearcoat Fresnel uses N.V as KHR_materials_clearcoat writes it, so f is reciprocal only when
+// clearcoat = 0.
 glm::vec3 pbr_eval(const PbrParams& p, glm::vec3 wi, glm::vec3 wo);
 // The same BRDF split as f = a + b * base_color (per channel): every other term is independent of
 // the base colour, which lets a fit solve for it in closed form.

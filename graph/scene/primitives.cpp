@@ -1,7 +1,7 @@
 #include "graph/scene/primitives.h"
 
 #include <algorithm>
-#include <glm/gtc/constants.hpp>
+#include <numbers>
 
 namespace lamina {
 
@@ -83,7 +83,7 @@ size_t shape_vertices(const SceneObject& object) {
 }
 
 TriangleMesh sphere_mesh(double radius, int segments) {
-  const double pi = glm::pi<double>();
+  const double pi = std::numbers::pi;
   return uv_grid(
       segments, sphere_rings(segments),
       [&](double u, double v, glm::dvec3& p, glm::dvec3& n, glm::dvec3& t) {
@@ -115,7 +115,7 @@ TriangleMesh box_mesh(glm::dvec3 size) {
 }
 
 TriangleMesh torus_mesh(double major_radius, double minor_radius, int segments) {
-  const double pi = glm::pi<double>();
+  const double pi = std::numbers::pi;
   return uv_grid(
       segments, torus_rings(segments),
       [&](double u, double v, glm::dvec3& p, glm::dvec3& n, glm::dvec3& t) {

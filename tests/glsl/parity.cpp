@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -45,7 +46,7 @@ using namespace lamina;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr float kRelTol = 1e-3f, kAbsFloor = 1e-5f, kDirTol = 1e-4f, kLobeMargin = 1e-5f;
 
 struct Query {

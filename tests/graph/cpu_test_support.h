@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <string>
 #include <thread>
@@ -35,7 +36,7 @@ inline constexpr bool kSanitized = false;
 inline constexpr int kSanitizerDivisor = 1;
 #endif
 
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = std::numbers::pi;
 
 inline double radians(double degrees) { return degrees * kPi / 180.0; }
 inline double degrees(double radians) { return radians * 180.0 / kPi; }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -19,7 +20,7 @@ using glm::vec3;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // Relative tolerance for values against the double-precision references.
 doctest::Approx rel(double expected, double eps = 1e-5) { return doctest::Approx(expected).epsilon(eps).scale(0.0); }

@@ -5,6 +5,7 @@
 
 #include "graph/compile.h"
 #include "graph/gltf/fallback.h"
+#include "nodes/kernels/kernels.h"
 
 #include <doctest/doctest.h>
 
@@ -103,6 +104,40 @@ TEST_CASE("pbr_eval matches an independent transcription of the glTF specificati
   // brdf(base=[0.1,0.3,0.7], metallic=0, rough=0.6, cc=0.8, ccr=0.2, L=[0.25,0.1,0.9], V=[-0.3,-0.1,0.85])
   check_close(gltf::pbr_eval(coated(), n({0.25f, 0.1f, 0.9f}), n({-0.3f, -0.1f, 0.85f})),
               {0.6489296f, 0.708089335f, 0.826408804f}, 2e-5f);
+}
+
+TEST_CASE("pbr_eval's specular lobe is Appendix B's Vis D with the separable Smith visibility, in double here") {
+  // A white metal: F = baseColor + (1 - baseColor) fresnel_w = 1, so f = Vis D (sec. B.3.2, as
+  // written before KhronosGroup/glTF#2541) with D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2), a = rough^2,
+  // and Vis = 1 / ((N.L + sqrt(a^2 + (1 - a^2)(N.L)^2)) (N.V + sqrt(a^2 + (1 - a^2)(N.V)^2))).
+  auto spec = [](double rough, glm::dvec3 l, glm::dvec3 v) {
+    const double a2 = std::pow(rough, 4.0);
+    const glm::dvec3 h = glm::normalize(l + v);
+    const double d = a2 / (test::kPi * std::pow(h.z * h.z * (a2 - 1.0) + 1.0, 2.0));
+    auto vis1 = [a2](double c) { return 1.0 / (c + std::sqrt(a2 + (1.0 - a2) * c * c)); };
+    return vis1(l.z) * vis1(v.z) * d;
+  };
+  for (float rough : {0.1f, 0.3f, 0.6f, 1.0f}) {
+    const PbrParams white_metal = params(vec3(1.0f), 1.0f, rough);
+    for (double theta_l : {0.0, 20.0, 55.0, 85.0})
+      for (double theta_v : {5.0, 40.0, 70.0, 89.0})
+        for (double phi : {0.0, 90.0, 180.0}) {
+          const glm::dvec3 l = test::spherical(test::radians(theta_l), test::radians(phi));
+          const glm::dvec3 v = test::spherical(test::radians(theta_v), 0.0);
+          const vec3 f = gltf::pbr_eval(white_metal, test::to_float(l), test::to_float(v));
+          CAPTURE(rough);
+          CAPTURE(theta_l);
+          CAPTURE(theta_v);
+          CAPTURE(phi);
+          for (int c = 0; c < 3; ++c) CHECK(double(f[c]) == doctest::Approx(spec(rough, l, v)).epsilon(1e-4));
+        }
+  }
+  // Roughness 0 is floored at alpha = the kernels' smooth limit: at normal incidence D = 1 / (pi a^2)
+  // and Vis = 1/4.
+  const double m = double(kernels::LAMINA_MIN_SLOPE);
+  const vec3 n(0.0f, 0.0f, 1.0f);
+  CHECK(double(gltf::pbr_eval(params(vec3(1.0f), 1.0f, 0.0f), n, n).x) ==
+        doctest::Approx(1.0 / (4.0 * test::kPi * m * m)).epsilon(1e-5));
 }
 
 TEST_CASE("pbr_eval is finite, non-negative, zero below the horizon and reciprocal without a clearcoat") {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <tuple>
 
 #include "graph/scene/primitives.h"
@@ -10,7 +11,7 @@ using namespace lamina;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 double area(const TriangleMesh& m) {
   double sum = 0.0;
