@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "nodes/kernels/kernels.h"
 #include "tools/commands.h"
 #include "tools/material_arg.h"
 #include "tools/plot_canvas.h"
@@ -24,9 +25,9 @@ constexpr int kMinSize = 800;
 constexpr int kMaxSize = 8192;
 constexpr int kDefaultSize = 1600;
 
-// The uniform sky around the sphere, as a radiance: a white Lambertian surface shows this much on
-// top of the light. Without it a smooth metal is black wherever it does not mirror the light.
-constexpr float kDefaultAmbient = 0.15f;
+// The radiance of the uniform sky around the sphere: by default the preview's own, which the GLSL
+// sphere shader uses too.
+const float kDefaultAmbient = kernels::LAMINA_PREVIEW_AMBIENT;
 constexpr float kMaxAmbient = 10.0f;
 
 struct PlotOptions {

@@ -30,7 +30,7 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   Rect sphere{split + l.px(20), top + l.px(44), width - l.px(20), height - l.px(44)};
   int side = std::min(sphere.x1 - sphere.x0, sphere.y1 - sphere.y0);
   int sx0 = (sphere.x0 + sphere.x1 - side) / 2, sy0 = (sphere.y0 + sphere.y1 - side) / 2;
-  draw_sphere(canvas, evaluator, {sx0, sy0, sx0 + side, sy0 + side}, kSphereBackground, ambient);
+  draw_sphere(canvas, evaluator, {sx0, sy0, sx0 + side, sy0 + side}, ambient);
 
   std::vector<SliceGeometry> geometry;
   for (size_t i = 0; i < slices.size(); ++i) {

@@ -1,5 +1,5 @@
-// The sphere panel of `lamina plot`: the material on a sphere under one directional light and a
-// dim uniform sky.
+// The sphere panel of `lamina plot`: the material preview of nodes/kernels/preview.glsl, the same
+// picture `lamina glsl --shader sphere` draws on the GPU.
 #pragma once
 
 #include "graph/cpu/evaluator.h"
@@ -7,8 +7,8 @@
 
 namespace lamina::cli::plot {
 
-// Shades the unit sphere into the square `area` of the canvas, `background` (display sRGB) around
-// it, with a uniform sky of radiance `ambient` (0: the light alone).
-void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, glm::vec3 background, float ambient);
+// Draws the preview, under a sky of radiance `ambient` (0: the light alone), into `area` of the
+// canvas, sRGB-encoded; around the sphere it shows the preview's background.
+void draw_sphere(Canvas& canvas, const cpu::Evaluator& evaluator, Rect area, float ambient);
 
 }  // namespace lamina::cli::plot

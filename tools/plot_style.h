@@ -5,12 +5,15 @@
 #include <array>
 #include <glm/glm.hpp>
 
+#include "nodes/kernels/kernels.h"
+
 namespace lamina::cli::plot {
 
 inline constexpr glm::vec3 kFigureBackground(0.105f, 0.108f, 0.118f);
 inline constexpr glm::vec3 kPlotBackground(0.028f, 0.029f, 0.034f);
-// Mid grey, so that the unlit side of the sphere shows its outline.
-inline constexpr glm::vec3 kSphereBackground(0.24f, 0.245f, 0.26f);
+// The preview's own background (nodes/kernels/preview.glsl), so that the sphere's square merges
+// into its panel.
+inline const glm::vec3 kSphereBackground = kernels::LAMINA_PREVIEW_BACKGROUND;
 inline constexpr glm::vec3 kGrid(0.19f, 0.195f, 0.215f);
 inline constexpr glm::vec3 kFrame(0.42f, 0.43f, 0.46f);
 inline constexpr glm::vec3 kMirror(0.62f, 0.62f, 0.66f);

@@ -6,59 +6,57 @@ namespace lamina::glsl {
 
 namespace {
 
-// NAME stands for the material's prefix.
+// NAME stands for the material's prefix. The preview's definition is in the lamina_preview_*
+// kernels (nodes/kernels/preview.glsl), which the module embeds because this code calls them; the
+// loops here are the ones graph/cpu/preview.cpp runs with the CPU evaluator.
 const char* kSphere = R"(// ================================================================================
-// --shader sphere: a unit sphere filling the viewport's shorter side, seen orthographically along
-// -z, lit by a directional light and a constant ambient (estimated with the material's own
-// importance sampling). Set lamina_viewport; the constants below are free to edit.
+// --shader sphere: the material preview of lamina plot (nodes/kernels/preview.glsl above): a unit
+// sphere filling the viewport's shorter side, seen orthographically along -z, lit by a directional
+// light and a uniform sky whose reflection is estimated with the material's own importance
+// sampling, from the same points in every pixel. Set lamina_viewport; lamina_ambient_radiance is
+// free to edit (0 for the light alone), the rest of the preview is in the kernels.
 // ================================================================================
 
 uniform vec2 lamina_viewport;  // viewport size in pixels
-const vec3 lamina_light_direction = vec3(-1.0f, 1.0f, 1.0f);  // towards the light (normalised below)
-const vec3 lamina_light_irradiance = vec3(LAMINA_PI);        // at normal incidence
-const vec3 lamina_ambient_radiance = vec3(0.08f);
-const vec3 lamina_background = vec3(0.12f, 0.12f, 0.13f);
-const int lamina_ambient_samples = 16;
+const vec3 lamina_ambient_radiance = vec3(LAMINA_PREVIEW_AMBIENT);  // the sky, as lamina plot --ambient
 
 layout(location = 0) out vec4 lamina_color;
 
 void main() {
-  vec2 q = (2.0f * gl_FragCoord.xy - lamina_viewport) / min(lamina_viewport.x, lamina_viewport.y);
-  float r2 = dot(q, q);
-  if (r2 >= 1.0f) {
-    lamina_color = vec4(srgb_from_linear(lamina_background), 1.0f);
-    return;
-  }
-  vec3 n = vec3(q, sqrt(1.0f - r2));
-  // Tangent along the lines of latitude about the y axis; uv = (longitude, latitude from the top).
-  vec3 t = vec3(n.z, 0.0f, -n.x);
-  t = dot(t, t) > 1.0e-12f ? normalize(t) : vec3(1.0f, 0.0f, 0.0f);
-  vec3 b = cross(n, t);
-  vec2 uv = vec2(atan(n.x, n.z) / (2.0f * LAMINA_PI) + 0.5f, acos(clamp(n.y, -1.0f, 1.0f)) / LAMINA_PI);
-  vec3 view = vec3(0.0f, 0.0f, 1.0f);
-  vec3 light = normalize(lamina_light_direction);
-  vec3 wo = normalize(vec3(dot(t, view), dot(b, view), dot(n, view)));
-  vec3 wi = normalize(vec3(dot(t, light), dot(b, light), dot(n, light)));
-  vec3 radiance = vec3(0.0f);
-  if (wi.z > 0.0f) {
-    radiance += NAME_eval(wi, wo, uv) * wi.z * lamina_light_irradiance;
-  }
-  // Ambient: the directional albedo at wo by the material's sampling (the same point set in every
-  // pixel, so the image is smooth, not noisy).
-  vec3 albedo = vec3(0.0f);
-  for (int i = 0; i < lamina_ambient_samples; ++i) {
-    float x = (float(i) + 0.5f) / float(lamina_ambient_samples);
-    vec2 u = vec2(x, fract(float(i) * 0.618034f + 0.5f));
-    float u_layer = fract(float(i) * 0.754878f + 0.25f);
-    vec3 w;
-    float pdf;
-    vec3 f = NAME_sample(wo, u, u_layer, uv, w, pdf);
-    if (pdf > 0.0f) {
-      albedo += f * w.z / pdf;
+  vec2 pixel = floor(gl_FragCoord.xy);
+  vec3 sum = vec3(0.0f);
+  vec3 sky = vec3(0.0f);
+  bool have_sky = false;
+  for (int s = 0; s < LAMINA_PREVIEW_SUBSAMPLES * LAMINA_PREVIEW_SUBSAMPLES; ++s) {
+    vec2 q = lamina_preview_disk(lamina_preview_subsample(pixel, s), lamina_viewport);
+    if (!lamina_preview_on_sphere(q)) {
+      sum += lamina_preview_background();
+      continue;
     }
+    vec3 n = lamina_preview_normal(q);
+    vec2 uv = lamina_preview_uv(n);
+    vec3 wo = lamina_preview_local(LAMINA_PREVIEW_VIEW, n);
+    vec3 wi = lamina_preview_local(LAMINA_PREVIEW_LIGHT, n);
+    vec3 radiance = vec3(0.0f);
+    if (wi.z > 0.0f) {
+      radiance = lamina_preview_light(NAME_eval(wi, wo, uv), wi);
+    }
+    // The sky once per pixel, at its first subsample on the sphere.
+    if (lamina_ambient_radiance != vec3(0.0f) && !have_sky) {
+      vec3 weights = vec3(0.0f);
+      for (int i = 0; i < LAMINA_PREVIEW_SKY_POINTS; ++i) {
+        vec3 p = lamina_preview_sky_point(i);
+        vec3 w;
+        float pdf;
+        vec3 f = NAME_sample(wo, p.xy, p.z, uv, w, pdf);
+        weights += lamina_preview_sky_weight(f, w, pdf);
+      }
+      sky = lamina_preview_sky(weights, lamina_ambient_radiance);
+      have_sky = true;
+    }
+    sum += lamina_preview_display(radiance + sky);
   }
-  radiance += lamina_ambient_radiance * albedo / float(lamina_ambient_samples);
-  lamina_color = vec4(srgb_from_linear(radiance), 1.0f);
+  lamina_color = vec4(srgb_from_linear(lamina_preview_mean(sum)), 1.0f);
 }
 )";
 

@@ -31,6 +31,7 @@ using namespace glm;
 #include "nodes/kernels/diffuse.glsl"
 #include "nodes/kernels/layer.glsl"
 #include "nodes/kernels/texture.glsl"
+#include "nodes/kernels/preview.glsl"
 #include "nodes/kernels/stack.glsl"
 // clang-format on
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every kernel in nodes/kernels/*.glsl compiles as GLSL 330 core, 450 core and ES 3.00.
-# For each target: the prelude the GLSL back end writes, the seven files in include order, and a
+# For each target: the prelude the GLSL back end writes, the files in include order, and a
 # fragment main() that calls every kernel once, validated by glslangValidator.
 # Usage: glsl_kernels_check.sh <project source dir>
 set -euo pipefail
@@ -55,6 +55,16 @@ void main() {
   // texture
   f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
   s += srgb_to_linear(w) + srgb_from_linear(w);
+  // preview
+  vec2 q = lamina_preview_disk(lamina_preview_subsample(v_uv, 3), vec2(640.0f, 480.0f));
+  vec3 pn = lamina_preview_normal(q);
+  if (lamina_preview_on_sphere(q)) s += lamina_preview_background();
+  s.xy += lamina_preview_uv(pn);
+  s += lamina_preview_local(LAMINA_PREVIEW_LIGHT, pn) + lamina_preview_local(LAMINA_PREVIEW_VIEW, pn);
+  s += lamina_preview_light(w, v) + lamina_preview_sky_point(LAMINA_PREVIEW_SKY_POINTS - 1);
+  s += lamina_preview_sky(lamina_preview_sky_weight(w, v, c), vec3(LAMINA_PREVIEW_AMBIENT));
+  s += lamina_preview_mean(lamina_preview_display(w)) * LAMINA_PREVIEW_IRRADIANCE;
+  f += float(LAMINA_PREVIEW_SUBSAMPLES);
   // stack
   vec3 lb = vec3(0.0f);
   vec3 vb = vec3(0.0f);
@@ -90,8 +100,9 @@ for target in 330 450 es300; do
     esac
     echo "#define LAMINA_OUT(T) out T"
     echo "#define LAMINA_FN"
-    for f in common fresnel microfacet diffuse layer texture stack; do
-      cat "$kernels/$f.glsl"
+    # The files in the order kernels.h includes them, the one list of kernel files.
+    for f in $(sed -n 's|^#include "nodes/kernels/\(.*\.glsl\)"$|\1|p' "$kernels/kernels.h"); do
+      cat "$kernels/$f"
     done
     main_body
   } >"$shader"
