@@ -128,7 +128,7 @@ Difference compare(const std::vector<vec3>& a, const std::vector<vec3>& b) {
 
 }  // namespace
 
-TEST_CASE("preview: the GLSL sphere shader draws lamina plot's sphere, pixel by pixel within one 8-bit level but at texture edges") {
+TEST_CASE("preview: the GLSL sphere shader draws lamina plot's sphere within one 8-bit level, but at texture edges") {
   for (const Case& c : kCases) {
     CAPTURE(c.file);
     CAPTURE(glsl::target_name(c.target));
