@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <string>
@@ -251,6 +252,7 @@ TEST_CASE("the GL runner runs both contexts on Mesa llvmpipe and times a pass") 
   pass.height = 64;
   std::string error;
   const double seconds = runners.get(Api::Desktop).time_pass(pass, 3, &error);
+  // A duration, not a bound on it: speed is measured by the benchmarks, never asserted in tests.
   CHECK_MESSAGE(seconds > 0.0, error);
-  CHECK(seconds < 1.0);
+  CHECK(std::isfinite(seconds));
 }
