@@ -2,9 +2,10 @@
 // at the same resolution in one run (the papers' GPU ratio was 2.3 to 4.2).
 // Run: bash tools/run_bench.sh (prints the ratios), or build/release/tests/glsl/lamina_glsl_bench.
 //
-// Each material is drawn as the --shader sphere wrapper at 1024 x 1024 in two forms: `light`, the
-// directional light alone (one eval per pixel, as the papers' renderings), and `sphere`, the
-// wrapper as shipped (the light plus 16 importance-sampled ambient directions per pixel).
+// Each material is drawn as the --shader sphere wrapper (the preview of nodes/kernels/preview.glsl)
+// at 1024 x 1024 in two forms: `light`, the directional light alone (an eval per subsample, 16 per
+// pixel, as the papers' renderings), and `sphere`, the wrapper as shipped (the light plus 64
+// importance-sampled sky directions per pixel).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -56,12 +57,18 @@ gltest::Pass pass(const std::string& name, bool ambient) {
   glsl::Options options;
   options.sphere_shader = true;
   std::string source = glsl::generate(programs, options).source;
-  if (!ambient)
-    source =
-        glsl::replace_all(source, "const int lamina_ambient_samples = 16;", "const int lamina_ambient_samples = 0;");
+  // Edits of the wrapper's text, each of which must find what it replaces.
+  auto edit = [&](const std::string& from, const std::string& to) {
+    if (source.find(from) == std::string::npos) {
+      std::fprintf(stderr, "the sphere shader has no '%s' to replace\n", from.c_str());
+      std::exit(1);
+    }
+    source = glsl::replace_all(source, from, to);
+  };
+  const std::string sky = "const vec3 lamina_ambient_radiance = vec3(LAMINA_PREVIEW_AMBIENT);";
+  if (!ambient) edit(sky, "const vec3 lamina_ambient_radiance = vec3(0.0f);");
   // The harness sets uniforms through a block; the wrapper's lamina_viewport becomes a constant.
-  source = glsl::replace_all(source, "uniform vec2 lamina_viewport;",
-                             "const vec2 lamina_viewport = vec2(" + std::to_string(kSize) + ".0f);");
+  edit("uniform vec2 lamina_viewport;", "const vec2 lamina_viewport = vec2(" + std::to_string(kSize) + ".0f);");
   gltest::Pass p;
   p.fragment_source = source;
   p.width = kSize;
