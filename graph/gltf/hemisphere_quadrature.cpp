@@ -11,13 +11,8 @@ namespace k = lamina::kernels;
 
 float ggx_reflection_pdf(float alpha, glm::vec3 wi, glm::vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
-  // With both directions above the horizon, h is too and wo.h = (1 + wi.wo) / |wi + wo| >= 0.
-  glm::vec3 h = glm::normalize(wi + wo);
-  float wo_dot_h = glm::dot(wo, h);
-  if (wo_dot_h <= 0.0f) return 0.0f;
-  // pdf_microfacet_normal's D(h) cos(theta_h), with D from h's components as the BRDF evaluates it,
-  // times the Jacobian 1 / (4 |wo.h|) of reflection (Walter et al. 2007, eqs. 14 and 24).
-  return k::d_microfacet_h(kGgx, h, alpha) * h.z / (4.0f * wo_dot_h);
+  // The layered lobes' reflection density (stack.glsl): D(h) cos(theta_h) / (4 |wo.h|).
+  return k::lamina_reflection_density(kGgx, alpha, wo, wi);
 }
 
 std::vector<WeightedDirection> hemisphere_quadrature(glm::vec3 wo, std::span<const float> alphas, int per_strategy) {
