@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "glsl/gl_runner.h"
+#include "glsl/material_pass.h"
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
@@ -205,14 +206,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
     tu.texels.push_back(vec4(q.uv, q.u));
   }
   pass.textures = {twi, two, tu};
-  for (const glsl::SamplerBinding& b : mi.samplers)
-    for (const TextureOp& op : program.ops)
-      if (const auto* img = std::get_if<ImageOp>(&op); img && img->node == b.node)
-        pass.textures.push_back({b.name, img->image->width, img->image->height, img->image->texels});
-  if (run.uniforms) {
-    pass.uniform_block_name = mi.block;
-    pass.uniform_block_data = glsl::pack_uniforms(mi);
-  }
+  test::bind_material(pass, program, mi, run.uniforms);
   std::vector<std::vector<vec4>> out;
   std::string error;
   if (!runner.run(pass, &out, &error)) {

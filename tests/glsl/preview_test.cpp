@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "glsl/gl_runner.h"
+#include "glsl/material_pass.h"
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
@@ -81,14 +82,7 @@ std::vector<vec3> gpu_preview(const Program& program, const Case& c) {
                                            "const vec2 lamina_viewport = vec2(" + std::to_string(kSize) + ".0f);");
   pass.width = kSize;
   pass.height = kSize;
-  for (const glsl::SamplerBinding& b : mi.samplers)
-    for (const TextureOp& op : program.ops)
-      if (const auto* img = std::get_if<ImageOp>(&op); img && img->node == b.node)
-        pass.textures.push_back({b.name, img->image->width, img->image->height, img->image->texels});
-  if (c.uniforms) {
-    pass.uniform_block_name = mi.block;
-    pass.uniform_block_data = glsl::pack_uniforms(mi);
-  }
+  test::bind_material(pass, program, mi, c.uniforms);
   std::vector<std::vector<vec4>> out;
   std::string error;
   bool ran = runner(c.target == glsl::Target::Es300 ? gltest::Api::Es : gltest::Api::Desktop).run(pass, &out, &error);

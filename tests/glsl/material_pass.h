@@ -1,0 +1,26 @@
+// What a GL test pass needs from a generated material besides its source: the decoded image of
+// every sampler the module declares, and the uniform block when parameters are uniforms.
+#pragma once
+
+#include <variant>
+
+#include "glsl/gl_runner.h"
+#include "graph/cpu/image.h"
+#include "graph/glsl/generator.h"
+#include "graph/program.h"
+
+namespace lamina::test {
+
+inline void bind_material(gltest::Pass& pass, const Program& program, const glsl::MaterialInterface& mi,
+                          bool uniforms) {
+  for (const glsl::SamplerBinding& b : mi.samplers)
+    for (const TextureOp& op : program.ops)
+      if (const auto* img = std::get_if<ImageOp>(&op); img && img->node == b.node)
+        pass.textures.push_back({b.name, img->image->width, img->image->height, img->image->texels});
+  if (uniforms) {
+    pass.uniform_block_name = mi.block;
+    pass.uniform_block_data = glsl::pack_uniforms(mi);
+  }
+}
+
+}  // namespace lamina::test
