@@ -44,25 +44,15 @@ Roughness roughness_of(const Graph& g, size_t i) {
   return r;
 }
 
+// A layer's medium tints when its node says so (NodeDecl::tint); no medium is clear.
 bool tinted(const Graph& g, std::optional<size_t> medium, std::string& why) {
-  if (!medium || g.decl(*medium).type == "medium/clear") {
+  if (!medium || !g.decl(*medium).tint) {
     why = "clear";
     return false;
   }
-  const Value* thickness = g.value(*medium, "thickness");
-  const Value* absorption = g.value(*medium, "absorption");
-  const double* d = thickness ? std::get_if<double>(thickness) : nullptr;
-  const Vec3d* a = absorption ? std::get_if<Vec3d>(absorption) : nullptr;
-  if (!d || !a) {
-    why = "textured absorption, taken as tinted";
-    return true;
-  }
-  double absorbed = 0.0;
-  for (double c : *a) absorbed = std::max(absorbed, 1.0 - std::exp(-2.0 * c * *d));
-  bool result = absorbed > kTintedAbsorbs;
-  why = std::string(result ? "tinted" : "clear") + " (absorbs up to " + number_text(std::round(absorbed * 1000) / 10) +
-        "% at normal incidence)";
-  return result;
+  Tint t = g.decl(*medium).tint(g, *medium);
+  why = t.why;
+  return t.tinted;
 }
 
 Classification result(const std::string& letter, std::string reason) {
@@ -102,7 +92,7 @@ Classification classify_path(const Graph& g, const Path& path) {
   size_t layer = path.layers.front();
   Roughness top_r = roughness_of(g, *g.linked(layer, "interface"));
   std::string top_text = (top_r.smooth() ? "smooth top (" : "rough top (") + top_r.text() + ")";
-  if (base.type == "substrate/conductor") {
+  if (base.metal) {
     Roughness base_r = roughness_of(g, path.substrate);
     std::string base_text = (base_r.smooth() ? "smooth metal base (" : "rough metal base (") + base_r.text() + ")";
     std::string reason = top_text + " over " + base_text;

@@ -1,20 +1,34 @@
 #include "graph/compile.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
-#include "graph/cpu/image.h"
 #include "graph/json_write.h"
+#include "graph/limits.h"
 #include "graph/load.h"
-#include "nodes/kernels/kernels.h"
-#include "nodes/metals.h"
+#include "graph/lowering.h"
 
 namespace lamina {
 
 namespace {
 
-class Compiler {
+int components(ValueType type) {
+  switch (type) {
+    case ValueType::Float: return 1;
+    case ValueType::Vec2: return 2;
+    case ValueType::Color:
+    case ValueType::Vec3: return 3;
+    default: return 0;
+  }
+}
+
+// Walks a checked graph once: texture and math nodes in topological order, each lowered by its
+// own behaviour into an op (or folded into constants when it is pure and its inputs are), then the
+// stack from the surface, depth first, each stack node lowered into its entry.
+class Compiler final : public InputSource {
  public:
   Compiler(const Graph& graph, const std::string& file, const AssetPolicy& policy)
       : g_(graph), file_(file), policy_(policy) {}
@@ -26,192 +40,109 @@ class Compiler {
     for (size_t i : g_.topological_order()) {
       if (!g_.used(i)) continue;
       NodeKind kind = g_.decl(i).kind;
-      if (kind == NodeKind::Texture || kind == NodeKind::Math) compile_texture(i);
+      if (kind == NodeKind::Texture || kind == NodeKind::Math) lower_op(i);
     }
-    program_.root = stack_node(g_.surface());
+    expand(g_.surface(), -1, 0);
     program_.slot_count = slots_;
     return std::move(program_);
   }
 
- private:
-  struct Output {
-    ScalarRef scalar;
-    ColorRef color;
-  };
+  InputRef input(size_t node, std::string_view param) const override {
+    const NodeDecl& decl = g_.decl(node);
+    const ParamDecl* p = decl.find_param(param);
+    const Value* v = g_.value(node, param);
+    if (!p || !v) throw std::logic_error("compile: " + g_.node(node).id + " has no value for " + std::string(param));
+    InputRef r;
+    r.node = g_.node(node).id;
+    r.parameter = std::string(param);
+    r.size = components(p->type);
+    r.lo = float(p->lo);
+    r.hi = float(p->hi);
+    if (const auto* link = std::get_if<Link>(v)) {
+      const size_t from = *g_.linked(node, param);
+      const InputRef& out = outputs_.at({from, g_.decl(from).find_output(link->output)->name});
+      r.slot = out.slot;
+      r.constant = out.constant;
+    } else if (const auto* d = std::get_if<double>(v)) {
+      r.constant = glm::vec3(float(*d), 0.0f, 0.0f);
+    } else if (const auto* v2 = std::get_if<Vec2d>(v)) {
+      r.constant = glm::vec3(float((*v2)[0]), float((*v2)[1]), 0.0f);
+    } else if (const auto* v3 = std::get_if<Vec3d>(v)) {
+      r.constant = glm::vec3(float((*v3)[0]), float((*v3)[1]), float((*v3)[2]));
+    } else {
+      throw std::logic_error("compile: " + r.node + "." + r.parameter + " is not a numeric input");
+    }
+    return r;
+  }
 
+ private:
   int allocate(int count) {
     int first = slots_;
     slots_ += count;
     return first;
   }
 
-  const Value& value(size_t i, const char* name) const {
-    const Value* v = g_.value(i, name);
-    if (!v) throw std::logic_error("compile: " + g_.node(i).id + " has no value for " + name);
-    return *v;
-  }
-
-  const Output& linked_output(const Link& link) const {
-    if (auto j = index_of(link.node)) return outputs_.at({*j, g_.decl(*j).find_output(link.output)->name});
-    throw std::logic_error("compile: dangling link " + to_string(link));
-  }
-
-  std::optional<size_t> index_of(const std::string& id) const {
-    if (ids_.empty())
-      for (size_t j = 0; j < g_.size(); ++j) ids_.emplace(g_.node(j).id, j);
-    auto it = ids_.find(id);
-    return it == ids_.end() ? std::nullopt : std::optional<size_t>(it->second);
-  }
-
-  ScalarRef scalar(size_t i, const char* name) const {
-    const Value& v = value(i, name);
-    if (const auto* link = std::get_if<Link>(&v)) return linked_output(*link).scalar;
-    return ScalarRef{float(std::get<double>(v)), -1};
-  }
-
-  ColorRef color(size_t i, const char* name) const {
-    const Value& v = value(i, name);
-    if (const auto* link = std::get_if<Link>(&v)) return linked_output(*link).color;
-    const auto& c = std::get<Vec3d>(v);
-    return ColorRef{glm::vec3(float(c[0]), float(c[1]), float(c[2])), -1};
-  }
-
-  glm::vec2 vec2(size_t i, const char* name) const {
-    const auto& v = std::get<Vec2d>(value(i, name));
-    return glm::vec2(float(v[0]), float(v[1]));
-  }
-
-  const std::string& text(size_t i, const char* name) const { return std::get<std::string>(value(i, name)); }
-
-  RoughnessRef roughness(size_t i) const {
-    if (g_.node(i).find("alpha")) return RoughnessRef{scalar(i, "alpha"), false};
-    return RoughnessRef{scalar(i, "roughness_deg"), true};
-  }
-
-  // Enum values are checked against their declarations before compiling.
-  static Distribution distribution(const std::string& name) {
-    if (name == "blinn") return Distribution::Blinn;
-    if (name == "ggx") return Distribution::Ggx;
-    if (name == "beckmann") return Distribution::Beckmann;
-    throw std::logic_error("compile: unknown distribution " + name);
-  }
-
-  static Fresnel fresnel(const std::string& name) {
-    if (name == "schlick") return Fresnel::Schlick;
-    if (name == "lazanyi") return Fresnel::Lazanyi;
-    if (name == "exact") return Fresnel::Exact;
-    throw std::logic_error("compile: unknown fresnel " + name);
-  }
-
-  void set_output(size_t i, const std::string& name, Output out) { outputs_[{i, name}] = out; }
-
-  void compile_texture(size_t i) {
-    const std::string& type = g_.decl(i).type;
-    if (type == "texture/checker") {
-      CheckerOp op{color(i, "color_a"), color(i, "color_b"), vec2(i, "scale"), allocate(3), allocate(1), g_.node(i).id};
-      set_output(i, "color", Output{{}, ColorRef{{}, op.color_slot}});
-      set_output(i, "value", Output{ScalarRef{0.0f, op.value_slot}, {}});
-      program_.ops.push_back(op);
-    } else if (type == "texture/image") {
-      ImageOp op;
-      op.node = g_.node(i).id;
-      op.file = text(i, "file");
-      try {
-        const Reference ref = resolve_reference(file_, op.file, ReferenceScope::AssetRoots, policy_);
-        op.image = load_image_reference(ref, text(i, "color_space") == "srgb", policy_);
-      } catch (const std::runtime_error& e) {  // ReferenceError, ImageError: the file changed since the check
-        throw IoError(file_ + ": texture file '" + op.file + "': " + e.what());
+  void lower_op(size_t i) {
+    const NodeDecl& decl = g_.decl(i);
+    if (!decl.lower || !decl.run || !decl.emit_glsl)
+      throw std::logic_error("compile: " + decl.type + " lacks a lowering, a CPU run or a GLSL emission");
+    TextureOp op;
+    op.decl = &decl;
+    op.node = g_.node(i).id;
+    NodeLowering lowering(g_, i, file_, policy_, *this, nullptr, &op);
+    decl.lower(lowering);
+    const bool constant =
+        !decl.varies && std::none_of(op.inputs.begin(), op.inputs.end(), [](const InputRef& r) { return r.linked(); });
+    if (constant) {
+      // A pure node of constants: run once here, with the same code every evaluator runs.
+      std::vector<float> scratch;
+      for (const OutputDecl& o : decl.outputs) {
+        op.outputs.push_back(int(scratch.size()));
+        scratch.resize(scratch.size() + size_t(components(o.type)), 0.0f);
       }
-      op.uv_scale = vec2(i, "uv_scale");
-      op.uv_offset = vec2(i, "uv_offset");
-      op.uv_rotation_deg = float(std::get<double>(value(i, "uv_rotation_deg")));
-      const std::string& wrap = text(i, "wrap");
-      op.wrap = wrap == "clamp" ? 1 : wrap == "mirror" ? 2 : 0;
-      op.color_slot = allocate(3);
-      op.value_slot = allocate(1);
-      op.alpha_slot = allocate(1);
-      set_output(i, "color", Output{{}, ColorRef{{}, op.color_slot}});
-      set_output(i, "value", Output{ScalarRef{0.0f, op.value_slot}, {}});
-      set_output(i, "alpha", Output{ScalarRef{0.0f, op.alpha_slot}, {}});
-      program_.ops.push_back(op);
-    } else if (type == "math/remap") {
-      RemapOp op;
-      op.node = g_.node(i).id;
-      op.value = scalar(i, "value");
-      op.in_min = float(std::get<double>(value(i, "in_min")));
-      op.in_max = float(std::get<double>(value(i, "in_max")));
-      op.out_min = float(std::get<double>(value(i, "out_min")));
-      op.out_max = float(std::get<double>(value(i, "out_max")));
-      op.clamp = std::get<bool>(value(i, "clamp"));
-      if (op.value.slot < 0) {
-        // Constant input: fold the remap away, with the kernel every evaluator runs.
-        float out = kernels::remap_value(op.value.constant, op.in_min, op.in_max, op.out_min, op.out_max, op.clamp);
-        set_output(i, "value", Output{ScalarRef{out, -1}, {}});
-        return;
+      decl.run(op, ShadingContext{}, scratch.data());
+      for (size_t k = 0; k < decl.outputs.size(); ++k) {
+        InputRef out;
+        const int first = op.outputs[k];
+        for (int c = 0; c < components(decl.outputs[k].type); ++c) out.constant[c] = scratch[size_t(first + c)];
+        outputs_[{i, decl.outputs[k].name}] = out;
       }
-      op.value_slot = allocate(1);
-      set_output(i, "value", Output{ScalarRef{0.0f, op.value_slot}, {}});
-      program_.ops.push_back(op);
-    } else {
-      throw std::logic_error("compile: no CPU texture operation for " + type);
+      return;
     }
-  }
-
-  LayerInterface interface(size_t i) const {
-    const std::string& type = g_.decl(i).type;
-    if (type == "interface/dielectric")
-      return DielectricInterface{scalar(i, "ior"), roughness(i), distribution(text(i, "distribution")),
-                                 fresnel(text(i, "fresnel")), g_.node(i).id};
-    throw std::logic_error("compile: no CPU interface for " + type);
-  }
-
-  LayerMedium medium(std::optional<size_t> i) const {
-    if (!i) return ClearMedium{};
-    if (g_.decl(*i).type == "medium/clear") return ClearMedium{g_.node(*i).id};
-    if (g_.decl(*i).type == "medium/absorbing")
-      return AbsorbingMedium{scalar(*i, "thickness"), color(*i, "absorption"), g_.node(*i).id};
-    throw std::logic_error("compile: no CPU medium for " + g_.decl(*i).type);
-  }
-
-  int stack_node(size_t i) {
-    if (auto it = stack_index_.find(i); it != stack_index_.end()) return it->second;
-    const std::string& type = g_.decl(i).type;
-    StackNode node;
-    if (type == "layer") {
-      LayerNode layer{interface(*g_.linked(i, "interface")), medium(g_.linked(i, "medium")), -1, g_.node(i).id};
-      layer.base = stack_node(*g_.linked(i, "base"));
-      node = layer;
-    } else if (type == "mix") {
-      MixNode mix{scalar(i, "weight"), -1, -1, g_.node(i).id};
-      mix.a = stack_node(*g_.linked(i, "a"));
-      mix.b = stack_node(*g_.linked(i, "b"));
-      node = mix;
-    } else if (type == "substrate/lambert") {
-      node = LambertNode{color(i, "albedo"), g_.node(i).id};
-    } else if (type == "substrate/oren_nayar") {
-      node = OrenNayarNode{color(i, "albedo"), scalar(i, "sigma"), g_.node(i).id};
-    } else if (type == "substrate/conductor") {
-      ConductorNode c;
-      c.node = g_.node(i).id;
-      if (const Value* metal = g_.node(i).find("metal")) {
-        c.metal = std::get<std::string>(*metal);
-        const Metal* m = find_metal(c.metal);
-        c.n = ColorRef{glm::vec3(float(m->n[0]), float(m->n[1]), float(m->n[2])), -1};
-        c.k = ColorRef{glm::vec3(float(m->k[0]), float(m->k[1]), float(m->k[2])), -1};
-      } else {
-        c.n = color(i, "n");
-        c.k = color(i, "k");
-      }
-      c.roughness = roughness(i);
-      c.distribution = distribution(text(i, "distribution"));
-      c.fresnel = fresnel(text(i, "fresnel"));
-      node = c;
-    } else {
-      throw std::logic_error("compile: no CPU stack node for " + type);
+    for (const OutputDecl& o : decl.outputs) {
+      InputRef out;
+      out.slot = allocate(components(o.type));
+      op.outputs.push_back(out.slot);
+      outputs_[{i, o.name}] = out;
     }
-    program_.stack.push_back(node);
-    int index = int(program_.stack.size()) - 1;
-    stack_index_[i] = index;
+    program_.ops.push_back(std::move(op));
+  }
+
+  // The entry of stack node `i` reached from entry `parent` (side: which stack of a mix parent),
+  // then its children: the node's structural stack parameters in declaration order (a layer's
+  // base; a mix's a and b). Returns the entry's index.
+  int expand(size_t i, int parent, int side) {
+    if (int(program_.stack.size()) >= kMaxStackEntries)
+      throw std::logic_error("compile: the stack of '" + program_.name + "' exceeds " +
+                             std::to_string(kMaxStackEntries) + " entries, which the checker refuses");
+    const NodeDecl& decl = g_.decl(i);
+    if (!decl.lower) throw std::logic_error("compile: " + decl.type + " has no lowering");
+    StackEntry entry;
+    entry.parent = parent;
+    entry.side = side;
+    entry.decl = &decl;
+    entry.node = g_.node(i).id;
+    NodeLowering lowering(g_, i, file_, policy_, *this, &entry, nullptr);
+    decl.lower(lowering);
+    const int index = int(program_.stack.size());
+    program_.stack.push_back(std::move(entry));
+    int child = 0;
+    for (const ParamDecl& p : decl.params) {
+      if (p.type != ValueType::Stack) continue;
+      const int below = expand(*g_.linked(i, p.name), index, child);
+      (child == 0 ? program_.stack[size_t(index)].first : program_.stack[size_t(index)].second) = below;
+      ++child;
+    }
     return index;
   }
 
@@ -220,9 +151,7 @@ class Compiler {
   const AssetPolicy& policy_;
   Program program_;
   int slots_ = 0;
-  std::map<std::pair<size_t, std::string>, Output> outputs_;
-  std::map<size_t, int> stack_index_;
-  mutable std::map<std::string, size_t> ids_;  // node id -> index, built on first use
+  std::map<std::pair<size_t, std::string>, InputRef> outputs_;  // (node, output) -> its value
 };
 
 }  // namespace

@@ -54,5 +54,9 @@ inline constexpr size_t kMaxSceneVertices = size_t{1} << 23;  // 8,388,608
 inline constexpr int kMaxStackNodes = 64;
 inline constexpr int kMaxLobes = 64;
 inline constexpr int kMaxSlots = 256;
+// The compiled stack's entries: one per stack node as reached along each path from the surface
+// (a stack both sides of a mix share appears once per side). Every mix entry has two children, so
+// there are fewer than two entries per lobe.
+inline constexpr int kMaxStackEntries = 2 * kMaxLobes;
 
 }  // namespace lamina

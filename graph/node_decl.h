@@ -15,7 +15,14 @@
 namespace lamina {
 
 class Diagnostics;
+class Graph;
+class NodeLowering;
 struct Node;
+struct ShadingContext;
+struct TextureOp;
+namespace glsl {
+class OpWriter;
+}
 
 enum class NodeKind { Interface, Medium, Substrate, Layer, Mix, Texture, Math };
 
@@ -81,6 +88,28 @@ struct NodeCheckContext {
 
 using NodeCheck = void (*)(const NodeCheckContext&);
 
+// A node's behaviour in every back end (DESIGN.md, "A node owns its behaviour"); its file sets
+// these next to its declaration.
+//   lower      every node: how it becomes part of a Program (graph/lowering.h): a texture or math
+//              node fills its TextureOp; an interface, medium, substrate, layer or mix fills its
+//              part of a stack entry with the kernels' model codes and inputs.
+//   run        texture and math nodes: their op on the CPU, from and into the register file.
+//   emit_glsl  texture and math nodes: their op as GLSL (graph/glsl/op_writer.h).
+// Stack nodes need no run or emit_glsl: the kernels' composition evaluates their entries in every
+// back end. The glTF export writes every node losslessly in LAMINA_materials_layered and bakes the
+// material into its fitted PBR fallback; `gltf` says what a node adds to that.
+using NodeLower = void (*)(NodeLowering&);
+using NodeRun = void (*)(const TextureOp&, const ShadingContext&, float* registers);
+using NodeEmitGlsl = void (*)(const TextureOp&, glsl::OpWriter&);
+
+// What classification (graph/classify.h) asks of a medium: whether it tints what passes through
+// it, and why, in words for the reason line.
+struct Tint {
+  bool tinted = false;
+  std::string why;
+};
+using NodeTint = Tint (*)(const Graph&, size_t node);
+
 struct NodeDecl {
   std::string type;  // "kind/name", or "layer" and "mix"
   NodeKind kind = NodeKind::Texture;
@@ -89,6 +118,18 @@ struct NodeDecl {
   std::vector<OutputDecl> outputs;  // the first is the default output of a link "@id"
   std::vector<Alternatives> alternatives;
   NodeCheck check = nullptr;  // rules beyond single values (files exist, in_min != in_max, ...)
+
+  NodeLower lower = nullptr;
+  NodeRun run = nullptr;
+  NodeEmitGlsl emit_glsl = nullptr;
+  // A texture node whose outputs depend on the shading point, not only on its inputs: never folded
+  // into constants at compile time, even when every input is constant.
+  bool varies = false;
+  // Facts for classification: a substrate that is a metal base; a medium's tint (none: clear).
+  bool metal = false;
+  NodeTint tint = nullptr;
+  // How glTF carries the node beyond the lossless extension (README, "glTF 2.0").
+  std::string gltf = "baked into the fitted PBR fallback";
 
   const ParamDecl* find_param(std::string_view name) const;
   const OutputDecl* find_output(std::string_view name) const;  // "" is the default output

@@ -1,18 +1,24 @@
 // A compiled material: the texture operations that fill a register file of floats at a shading
-// point, and the layer stack as a small tree whose parameters are constants or registers.
-// A Program is immutable and valid by construction; evaluators only read it, from any thread.
+// point, and the layer stack as the array of entries the kernels' composition walks
+// (nodes/kernels/stack.glsl). A Program is immutable and valid by construction; back ends only
+// read it, from any thread.
 #pragma once
 
 #include <glm/glm.hpp>
+#include <limits>
 #include <memory>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace lamina {
 
-// What a texture node reads at a shading point (DESIGN.md: the shading context flows into every
-// texture node, so later nodes can filter by footprint or use position and tangents).
+struct NodeDecl;
+struct LinearImage;
+
+// Everything a material may read at a shading point (DESIGN.md: bound once per hit). Positions,
+// normals and tangents are in world space; the shading frame is built from normal and tangent, so
+// that directions given in world space are turned into the local frame in one place
+// (cpu::ShadingPoint). The defaults make world space the local frame.
 struct ShadingContext {
   glm::vec2 uv{0.0f};
   glm::vec3 position{0.0f};
@@ -20,121 +26,84 @@ struct ShadingContext {
   glm::vec3 tangent{1.0f, 0.0f, 0.0f};
   float view_distance = 1.0f;
   float footprint = 0.0f;  // pixel footprint in uv units; 0 = a point sample
+
+  bool operator==(const ShadingContext&) const = default;
 };
 
-// A float input: a folded constant, or register `slot` when >= 0.
-struct ScalarRef {
-  float constant = 0.0f;
-  int slot = -1;
-};
-// A colour input: a folded constant, or registers slot, slot+1, slot+2 when slot >= 0.
-struct ColorRef {
+// A value a node reads: a constant folded at compile time, or `size` registers from `slot` on,
+// clamped to the parameter's declared range [lo, hi] (a texture cannot push a parameter outside
+// the model's domain). size: 1 a float, 2 a vec2, 3 a colour or a vec3.
+struct InputRef {
   glm::vec3 constant{0.0f};
-  int slot = -1;
+  int slot = -1;  // the first register, or -1 for the constant
+  int size = 1;
+  float lo = -std::numeric_limits<float>::infinity();
+  float hi = std::numeric_limits<float>::infinity();
+  std::string node;       // the node and parameter it came from: back ends name uniforms and
+  std::string parameter;  // comments after them
+
+  bool linked() const { return slot >= 0; }
 };
 
-enum class Distribution { Beckmann = 0, Blinn = 1, Ggx = 2 };
-// The Fresnel term of a microfacet node; the values are the kernels' fresnel_mode
-// (lamina_fresnel_dielectric, lamina_fresnel_conductor in nodes/kernels/fresnel.glsl).
-enum class Fresnel { Exact = 0, Schlick = 1, Lazanyi = 2 };
-
-// Roughness as the file gave it: an angle in degrees (m = tan) or the slope alpha itself.
-struct RoughnessRef {
-  ScalarRef value;
-  bool degrees = true;
+// One texture or math node at a shading point: its behaviour (NodeDecl::run on the CPU,
+// NodeDecl::emit_glsl in GLSL) reads `inputs` and writes its outputs' registers.
+struct TextureOp {
+  const NodeDecl* decl = nullptr;
+  std::string node;                          // the node's id
+  std::vector<InputRef> inputs;              // in the order the node's lowering adds them
+  std::vector<int> outputs;                  // the first register of each declared output, in declaration order
+  std::vector<int> choices;                  // enum and flag parameters, as the node's lowering encodes them
+  std::shared_ptr<const LinearImage> image;  // texture/image: the decoded file
+  std::string file;                          // texture/image: the file as written
 };
 
-// --- texture operations, run in order ------------------------------------------------------------
+// A colour or vec3 input (3 components), by default the constant c.
+inline InputRef vec3_input(glm::vec3 c = glm::vec3(0.0f)) {
+  InputRef r;
+  r.constant = c;
+  r.size = 3;
+  return r;
+}
 
-struct LinearImage;  // texels decoded to linear floats (graph/cpu/image.h)
+// One entry of the stack as the kernels see it (LaminaEntry and LaminaInputs of
+// nodes/kernels/stack.glsl), with where it came from.
+struct StackEntry {
+  // LaminaEntry: the kernels' constants (LAMINA_LAYER, LAMINA_SUBSTRATE_CONDUCTOR, ...).
+  int kind = 0;
+  int model = 0;
+  int medium = 0;
+  int distribution = 0;
+  int fresnel = 0;
+  bool degrees = false;  // the roughness input is an angle in degrees (else the slope itself)
+  int parent = -1;
+  int side = 0;
+  int first = -1;
+  int second = -1;
+  // LaminaInputs, member by member; an input a model does not read stays a constant 0.
+  InputRef colour0 = vec3_input(), colour1 = vec3_input(), colour2 = vec3_input();
+  InputRef scalar_x, scalar_y, scalar_z;
+  // The frame slot: a normal input will tilt the entry's frame; the shading normal until then.
+  InputRef normal = vec3_input(glm::vec3(0.0f, 0.0f, 1.0f));
 
-// Every operation and stack part keeps the id of the node it came from (`node`), so that back ends
-// can name their variables, uniforms and comments after the user's graph.
-struct CheckerOp {
-  ColorRef color_a, color_b;
-  glm::vec2 scale{8.0f};
-  int color_slot = -1, value_slot = -1;
+  // Where it came from: the layer, mix or substrate node, and a layer's interface and medium.
+  const NodeDecl* decl = nullptr;
   std::string node;
+  const NodeDecl* interface_decl = nullptr;
+  std::string interface_node;
+  const NodeDecl* medium_decl = nullptr;
+  std::string medium_node;
+  std::string note;  // for listings: e.g. the named metal a conductor's n and k came from
 };
-struct ImageOp {
-  std::shared_ptr<const LinearImage> image;
-  std::string file;  // as written in the material (for back ends that bind their own textures)
-  glm::vec2 uv_scale{1.0f}, uv_offset{0.0f};
-  float uv_rotation_deg = 0.0f;
-  int wrap = 0;  // 0 repeat, 1 clamp, 2 mirror
-  int color_slot = -1, value_slot = -1, alpha_slot = -1;
-  std::string node;
-};
-struct RemapOp {
-  ScalarRef value;
-  float in_min = 0.0f, in_max = 1.0f, out_min = 0.0f, out_max = 1.0f;
-  bool clamp = true;
-  int value_slot = -1;
-  std::string node;
-};
-using TextureOp = std::variant<CheckerOp, ImageOp, RemapOp>;
-
-// --- the stack ------------------------------------------------------------------------------------
-// Each kind is its own struct; the evaluators dispatch with std::visit, so a new interface,
-// medium or substrate kind adds a struct here and its functions, not a change to the recursion.
-
-struct DielectricInterface {
-  ScalarRef ior;  // absolute index of the layer below
-  RoughnessRef roughness;
-  Distribution distribution = Distribution::Beckmann;
-  Fresnel fresnel = Fresnel::Exact;
-  std::string node;
-};
-using LayerInterface = std::variant<DielectricInterface>;
-
-struct ClearMedium {
-  std::string node;  // empty when the layer names no medium
-};
-struct AbsorbingMedium {
-  ScalarRef thickness;  // micrometres
-  ColorRef absorption;  // per micrometre
-  std::string node;
-};
-using LayerMedium = std::variant<ClearMedium, AbsorbingMedium>;
-
-struct LayerNode {
-  LayerInterface interface;
-  LayerMedium medium;
-  int base = -1;  // index into Program::stack
-  std::string node;
-};
-struct MixNode {
-  ScalarRef weight;
-  int a = -1, b = -1;
-  std::string node;
-};
-struct LambertNode {
-  ColorRef albedo;
-  std::string node;
-};
-struct OrenNayarNode {
-  ColorRef albedo;
-  ScalarRef sigma;
-  std::string node;
-};
-struct ConductorNode {
-  ColorRef n, k;  // absolute complex index
-  RoughnessRef roughness;
-  Distribution distribution = Distribution::Beckmann;
-  Fresnel fresnel = Fresnel::Exact;
-  std::string node;
-  std::string metal;  // the named metal n and k came from, if any
-};
-using StackNode = std::variant<LayerNode, MixNode, LambertNode, OrenNayarNode, ConductorNode>;
 
 struct Program {
   std::string name;         // the material's name
   std::string source_file;  // the file it came from
   bool clamp_lower_roughness = true;
   int slot_count = 0;
-  std::vector<TextureOp> ops;
-  std::vector<StackNode> stack;
-  int root = -1;  // index of the surface in `stack`
+  std::vector<TextureOp> ops;     // run in order; each reads only registers written before it
+  std::vector<StackEntry> stack;  // depth first from the surface (entry 0): parents before children
+
+  bool textured() const { return !ops.empty(); }
 };
 
 }  // namespace lamina

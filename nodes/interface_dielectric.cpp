@@ -1,7 +1,17 @@
 // interface/dielectric: a rough or smooth boundary into a transparent layer (course sec. 2.1).
+#include "nodes/kernels/kernels.h"
 #include "nodes/microfacet_params.h"
 
 namespace lamina {
+
+static void lower_dielectric(NodeLowering& n) {
+  StackEntry& e = n.entry();
+  e.model = kernels::LAMINA_INTERFACE_DIELECTRIC;
+  e.interface_decl = &n.decl();
+  e.interface_node = n.id();
+  e.scalar_x = n.input("ior");
+  lower_microfacet_params(n);
+}
 
 NodeDecl declare_interface_dielectric() {
   NodeDecl d;
@@ -14,6 +24,7 @@ NodeDecl declare_interface_dielectric() {
                          .described("absolute index of refraction of the layer below the boundary"));
   add_microfacet_params(d);
   d.outputs.push_back({"interface", ValueType::Interface, "the boundary, for a layer's interface input"});
+  d.lower = lower_dielectric;
   return d;
 }
 

@@ -14,6 +14,7 @@ void add_microfacet_params(NodeDecl& decl) {
                             .or_default(0.0)
                             .links()
                             .described("RMS microfacet slope m = tan(roughness_deg); give this or roughness_deg"));
+  // The choices in the order of the kernels' codes (d_microfacet, lamina_fresnel_dielectric).
   decl.params.push_back(param("distribution", ValueType::Enum)
                             .one_of({"beckmann", "blinn", "ggx"})
                             .or_default(std::string("beckmann"))
@@ -25,6 +26,14 @@ void add_microfacet_params(NodeDecl& decl) {
           .described("Fresnel term F: exact (the Fresnel equations), schlick (Schlick 1994, F0 from the exact term at "
                      "normal incidence) or lazanyi (Lazanyi and Szirmay-Kalos 2005 as in Elek 2010, App. B)"));
   decl.alternatives.push_back({{{"roughness_deg"}, {"alpha"}}, true});
+}
+
+void lower_microfacet_params(NodeLowering& node) {
+  StackEntry& e = node.entry();
+  e.distribution = node.choice("distribution");
+  e.fresnel = node.choice("fresnel");
+  e.degrees = !node.given("alpha");
+  e.scalar_y = node.input(e.degrees ? "roughness_deg" : "alpha");
 }
 
 }  // namespace lamina

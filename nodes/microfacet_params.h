@@ -1,6 +1,7 @@
 // Roughness, distribution and Fresnel parameters shared by every microfacet node (interfaces, conductors).
 #pragma once
 
+#include "graph/lowering.h"
 #include "graph/node_decl.h"
 
 namespace lamina {
@@ -13,5 +14,9 @@ inline constexpr double kMaxAlpha = 1.0;
 // Adds roughness_deg | alpha (at most one; default: smooth), distribution and fresnel to `decl`.
 // Every microfacet node has a Fresnel term, so the choice of its form is declared here, once.
 void add_microfacet_params(NodeDecl& decl);
+
+// Lowers those parameters into the node's stack entry: the distribution and Fresnel term as the
+// kernels number them, the roughness as the entry's scalars.y with its unit.
+void lower_microfacet_params(NodeLowering& node);
 
 }  // namespace lamina

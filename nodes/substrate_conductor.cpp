@@ -1,6 +1,8 @@
 // substrate/conductor: a rough metal, Torrance-Sparrow with the conductor Fresnel term (exact by
 // default; course sec. 2.1). Metals are opaque, so a conductor is always the bottom of a stack.
+#include "graph/lowering.h"
 #include "graph/number_text.h"
+#include "nodes/kernels/kernels.h"
 #include "nodes/metals.h"
 #include "nodes/microfacet_params.h"
 
@@ -13,6 +15,32 @@ static std::vector<std::pair<std::string, std::string>> described_metals() {
   for (const auto& m : metals())
     out.emplace_back(m.name, "n (" + triple(m.n) + "), k (" + triple(m.k) + "); " + std::string(m.source));
   return out;
+}
+
+// A named metal's tabulated n and k, as the constants the parameters would have given.
+static InputRef metal_constant(NodeLowering& n, const char* parameter, const Vec3d& value) {
+  InputRef r;
+  r.constant = glm::vec3(float(value[0]), float(value[1]), float(value[2]));
+  r.size = 3;
+  r.node = n.id();
+  r.parameter = parameter;
+  return r;
+}
+
+static void lower_conductor(NodeLowering& n) {
+  StackEntry& e = n.entry();
+  e.kind = kernels::LAMINA_SUBSTRATE;
+  e.model = kernels::LAMINA_SUBSTRATE_CONDUCTOR;
+  if (n.given("metal")) {
+    const Metal* metal = find_metal(n.text("metal"));
+    e.colour0 = metal_constant(n, "n", metal->n);
+    e.colour1 = metal_constant(n, "k", metal->k);
+    e.note = n.text("metal");
+  } else {
+    e.colour0 = n.input("n");
+    e.colour1 = n.input("k");
+  }
+  lower_microfacet_params(n);
 }
 
 NodeDecl declare_substrate_conductor() {
@@ -35,6 +63,8 @@ NodeDecl declare_substrate_conductor() {
   add_microfacet_params(d);
   d.alternatives.push_back({{{"metal"}, {"n", "k"}}, false});
   d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
+  d.lower = lower_conductor;
+  d.metal = true;
   return d;
 }
 

@@ -1,7 +1,16 @@
 // substrate/lambert: an ideal diffuse opaque base, f = albedo / pi.
+#include "graph/lowering.h"
 #include "graph/node_decl.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina {
+
+static void lower_lambert(NodeLowering& n) {
+  StackEntry& e = n.entry();
+  e.kind = kernels::LAMINA_SUBSTRATE;
+  e.model = kernels::LAMINA_SUBSTRATE_LAMBERT;
+  e.colour0 = n.input("albedo");
+}
 
 NodeDecl declare_substrate_lambert() {
   NodeDecl d;
@@ -13,6 +22,7 @@ NodeDecl declare_substrate_lambert() {
                          .links()
                          .described("diffuse reflectance per channel (linear RGB)"));
   d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
+  d.lower = lower_lambert;
   return d;
 }
 

@@ -1,9 +1,19 @@
 // substrate/oren_nayar: rough diffuse base with the inter-reflection term (course sec. 3.3.1).
 #include <numbers>
 
+#include "graph/lowering.h"
 #include "graph/node_decl.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina {
+
+static void lower_oren_nayar(NodeLowering& n) {
+  StackEntry& e = n.entry();
+  e.kind = kernels::LAMINA_SUBSTRATE;
+  e.model = kernels::LAMINA_SUBSTRATE_OREN_NAYAR;
+  e.colour0 = n.input("albedo");
+  e.scalar_x = n.input("sigma");
+}
 
 NodeDecl declare_substrate_oren_nayar() {
   NodeDecl d;
@@ -21,6 +31,7 @@ NodeDecl declare_substrate_oren_nayar() {
                          .links()
                          .described("standard deviation of the facet slope angle, as in the course's shader"));
   d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
+  d.lower = lower_oren_nayar;
   return d;
 }
 

@@ -38,17 +38,18 @@ int main(int argc, char** argv) {
     glm::vec3 albedo = material.albedo(ctx, wo);
 
     // 4. Many queries at once: spans of equal length, one entry per query (structure of arrays).
-    //    Lights swept through the plane of incidence at one uv; uv may also be left empty (0, 0).
+    //    Lights swept through the plane of incidence at one shading context; the contexts may also
+    //    be left empty (the default context for every query).
     const int count = 7;
     std::vector<glm::vec3> lights, views(count, wo), batch_f(count);
-    std::vector<glm::vec2> uvs(count, ctx.uv);
+    std::vector<lamina::ShadingContext> contexts(count, ctx);
     std::vector<lamina::cpu::EvalPdf> batch(count);
     for (int i = 0; i < count; ++i) {
       float theta = 0.25f * float(i) - 0.75f;  // -43 to 43 degrees from the normal, > 0 toward the mirror
       lights.push_back(frame.to_local(glm::vec3(0.0f, std::cos(theta), -std::sin(theta))));
     }
-    material.eval(lights, views, uvs, batch_f);
-    material.eval_pdf(lights, views, uvs, batch);  // throws std::invalid_argument for unequal lengths
+    material.eval(contexts, lights, views, batch_f);
+    material.eval_pdf(contexts, lights, views, batch);  // throws std::invalid_argument for unequal lengths
 
     std::printf("%s: %s\n", argv[1], name.c_str());
     std::printf("  f   = %.6g %.6g %.6g  pdf = %.6g\n", f.x, f.y, f.z, pdf);

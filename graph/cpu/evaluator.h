@@ -1,19 +1,25 @@
 // The CPU evaluator of a compiled material: the layered BRDF of Weidlich and Wilkie as Elek's
-// Algorithm 1 evaluates it, generalised to stacks of any depth, with importance sampling.
+// Algorithm 1 evaluates it, generalised to stacks of any depth, with importance sampling. The
+// composition is the kernels' (nodes/kernels/stack.glsl), the same text the GLSL back end runs.
 //
-// Conventions (DESIGN.md): local frame with the normal along z; wi (light) and wo (view) point
-// away from the surface; f excludes the cosine; directions below the horizon give exactly 0.
+// Conventions (DESIGN.md): wi (light) and wo (view) point away from the surface; f excludes the
+// cosine; directions below the horizon give exactly 0. A shading point is bound once per hit
+// (bind): it runs the material's textures for the whole context and turns world-space directions
+// into its local frame (z along the normal, x along the tangent). The default context's frame is
+// the identity, so directions may also be given in the local frame directly.
 #pragma once
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "graph/cpu/frame.h"
 #include "graph/limits.h"
-#include "graph/lobes.h"
 #include "graph/program.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina::cpu {
 
@@ -29,9 +35,62 @@ struct EvalPdf {
   float pdf = 0.0f;
 };
 
+// What a lobe is, for a renderer deciding how to treat it.
+struct LobeFlags {
+  bool diffuse = false;   // a diffuse substrate's lobe
+  bool glossy = false;    // a microfacet lobe (an interface or a conductor)
+  bool specular = false;  // a microfacet lobe smoother than kSpecularSlope at this point: it acts as
+                          // a mirror, so light sampling rarely finds it and BRDF sampling should
+};
+
+// A microfacet lobe whose slope (after Elek's clamp) is below this is flagged specular: 0.06
+// degrees, far smoother than any viewer resolves (the course's smoothest varnish is 0.01 degrees).
+inline constexpr float kSpecularSlope = 1.0e-3f;
+
+class Evaluator;
+struct Local;  // the local-frame queries on one point's parameters (evaluator.cpp)
+
+// A material bound to one shading context. Cheap to copy; valid while its Evaluator lives.
+class ShadingPoint {
+ public:
+  // Directions in the space of the context's normal and tangent (world space for a renderer; the
+  // local frame with the default context).
+  glm::vec3 eval(glm::vec3 wi, glm::vec3 wo) const;
+  float pdf(glm::vec3 wi, glm::vec3 wo) const;
+  // eval and pdf together, bit for bit what the two return apart, sharing the work.
+  EvalPdf eval_pdf(glm::vec3 wi, glm::vec3 wo) const;
+  // u: two uniform numbers for the lobe's direction; u_lobe: one for choosing the lobe.
+  Sample sample(glm::vec3 wo, glm::vec2 u, float u_lobe) const;
+  // Directional albedo: the integral of f cos(theta_i) over the hemisphere, by deterministic
+  // quadrature: each lobe's sampler driven by a Hammersley point set, combined as the mixture.
+  glm::vec3 albedo(glm::vec3 wo, int points_per_lobe = 1024) const;
+  // The lobe selection probabilities at wo (they sum to 1; all 0 when wo is below the horizon).
+  std::vector<float> lobe_weights(glm::vec3 wo) const;
+  LobeFlags lobe_flags(size_t lobe) const;
+
+  const Frame& frame() const { return frame_; }
+  // The texture registers (Program::slot_count floats): two points with equal registers have the
+  // same BRDF, which back ends that bake textures use to group texels.
+  std::span<const float> registers() const;
+
+ private:
+  friend class Evaluator;
+  explicit ShadingPoint(const Evaluator& evaluator) : evaluator_(&evaluator) {}
+  glm::vec3 local(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_local(w); }
+  glm::vec3 world(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_world(w); }
+  const kernels::LaminaParams* params() const;
+  Local queries() const;
+
+  const Evaluator* evaluator_;
+  Frame frame_;
+  bool identity_frame_ = true;
+  bool own_params_ = false;  // textured: params resolved here; otherwise the evaluator's
+  std::array<float, kMaxSlots> registers_;
+  std::array<kernels::LaminaParams, kMaxStackEntries> params_;
+};
+
 // Immutable once built: every member function is const and safe to call from many threads at once.
-// A material without texture nodes has its parameters resolved once, at construction; a textured
-// one resolves them at each shading point (once per run of equal uvs in the batch forms).
+// A material without texture nodes has its parameters resolved once, at construction.
 class Evaluator {
  public:
   // Throws std::length_error when the program exceeds the stack limits of graph/limits.h (so that a
@@ -40,45 +99,49 @@ class Evaluator {
 
   const Program& program() const { return program_; }
 
+  ShadingPoint bind(const ShadingContext& ctx) const;
+
+  // The same as bind(ctx) and the call, without keeping the bound point.
   glm::vec3 eval(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
   float pdf(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
-  // eval and pdf together, bit for bit what the two return apart, sharing the work at one point.
   EvalPdf eval_pdf(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
-  // u: two uniform numbers for the lobe's direction; u_lobe: one for choosing the lobe.
   Sample sample(const ShadingContext& ctx, glm::vec3 wo, glm::vec2 u, float u_lobe) const;
-  // Directional albedo: the integral of f cos(theta_i) over the hemisphere, by deterministic
-  // quadrature: each lobe's sampler driven by a Hammersley point set, combined as the mixture.
   glm::vec3 albedo(const ShadingContext& ctx, glm::vec3 wo, int points_per_lobe = 1024) const;
-
-  // Batches over structure-of-arrays spans: query i is (wi[i], wo[i]) at uv[i] (the other fields
-  // of the ShadingContext at their defaults). Every span has the length of the output; uv may
-  // also be empty (uv = 0 for all). Other lengths throw std::invalid_argument. Each result is
-  // bit for bit the single-query form's.
-  void eval(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
-            std::span<glm::vec3> f) const;
-  void pdf(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
-           std::span<float> pdf) const;
-  void eval_pdf(std::span<const glm::vec3> wi, std::span<const glm::vec3> wo, std::span<const glm::vec2> uv,
-                std::span<EvalPdf> out) const;
-  void sample(std::span<const glm::vec3> wo, std::span<const glm::vec2> u, std::span<const float> u_lobe,
-              std::span<const glm::vec2> uv, std::span<Sample> out) const;
-
-  // The lobes sampling chooses between: one per interface and one per substrate, per path
-  // through the mixes. Named by node kind and depth, e.g. "interface 0", "substrate 1 (conductor)".
-  size_t lobe_count() const { return lobes_.size(); }
-  const std::string& lobe_name(size_t i) const { return lobes_[i].name; }
-  // The selection probabilities at wo (they sum to 1).
   std::vector<float> lobe_weights(const ShadingContext& ctx, glm::vec3 wo) const;
-  // The texture registers at a shading point (Program::slot_count floats): two points with equal
-  // registers have the same BRDF, which back ends that bake textures use to group texels.
   std::vector<float> texture_registers(const ShadingContext& ctx) const;
 
-  struct Plan;  // the stack as the evaluator walks it, built once (evaluator.cpp)
+  // Batches over structure-of-arrays spans: query i is (wi[i], wo[i]) at context ctx[i]. Every
+  // span has the length of the output; ctx may also be empty (the default context for all).
+  // Other lengths throw std::invalid_argument. Each result is bit for bit the single-query form's;
+  // a run of equal contexts is bound once.
+  void eval(std::span<const ShadingContext> ctx, std::span<const glm::vec3> wi, std::span<const glm::vec3> wo,
+            std::span<glm::vec3> f) const;
+  void pdf(std::span<const ShadingContext> ctx, std::span<const glm::vec3> wi, std::span<const glm::vec3> wo,
+           std::span<float> pdf) const;
+  void eval_pdf(std::span<const ShadingContext> ctx, std::span<const glm::vec3> wi, std::span<const glm::vec3> wo,
+                std::span<EvalPdf> out) const;
+  void sample(std::span<const ShadingContext> ctx, std::span<const glm::vec3> wo, std::span<const glm::vec2> u,
+              std::span<const float> u_lobe, std::span<Sample> out) const;
+
+  // The lobes sampling chooses between: one per interface and one per substrate, per path
+  // through the mixes (the stack entries that are not mixes, in order). Named by kind and depth,
+  // e.g. "interface 0", "substrate 1 (conductor)".
+  size_t lobe_count() const { return lobe_entry_.size(); }
+  const std::string& lobe_name(size_t i) const { return lobe_names_[i]; }
 
  private:
+  friend class ShadingPoint;
+  // Fills the point's registers and parameters for ctx (textured materials only).
+  void resolve(const ShadingContext& ctx, ShadingPoint& point) const;
+
   Program program_;
-  std::vector<Lobe> lobes_;
-  std::shared_ptr<const Plan> plan_;
+  int count_ = 0;                                 // stack entries
+  std::vector<kernels::LaminaEntry> entries_;     // Program::stack as the kernels read it
+  std::vector<kernels::LaminaInputs> constants_;  // every entry's inputs with its constants
+  std::vector<kernels::LaminaParams> fixed_;      // untextured: every entry's parameters, resolved once
+  std::vector<int> lobe_entry_;                   // lobe j is entry lobe_entry_[j]
+  std::vector<int> entry_lobe_;                   // and entry i is lobe entry_lobe_[i] (-1: a mix)
+  std::vector<std::string> lobe_names_;
 };
 
 }  // namespace lamina::cpu

@@ -1,5 +1,7 @@
 #include "graph/glsl/generator.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -9,14 +11,13 @@
 #include "graph/cpu/image.h"
 #include "graph/glsl/glsl_text.h"
 #include "graph/glsl/kernel_items.h"
+#include "graph/glsl/op_writer.h"
 #include "graph/glsl/sphere_shader.h"
-#include "graph/lobes.h"
+#include "graph/kernel_stack.h"
+#include "graph/node_decl.h"
 #include "nodes/kernels/kernels.h"
-#include "nodes/metals.h"
 
 namespace lamina::glsl {
-
-namespace k = lamina::kernels;
 
 namespace {
 
@@ -56,32 +57,52 @@ bool parse_target(const std::string& text, Target& target) {
 
 namespace {
 
-const char* distribution_name(Distribution d) {
-  switch (d) {
-    case Distribution::Beckmann: return "beckmann";
-    case Distribution::Blinn: return "blinn";
-    case Distribution::Ggx: return "ggx";
-  }
-  return "beckmann";
-}
-
 // std140: float aligns to 4, vec2 to 8, vec3 to 16 (and takes 12 bytes).
 size_t std140_align(const std::string& type) { return type == "float" ? 4 : type == "vec2" ? 8 : 16; }
 size_t std140_size(const std::string& type) { return type == "float" ? 4 : type == "vec2" ? 8 : 12; }
 
-// Emits the GLSL of one material. Functions are named <prefix>_...; every value a node reads is
-// a literal, a uniform block member or a texture register, chosen once in `input`.
-class MaterialEmitter {
+const char* type_of_size(int size) { return size == 1 ? "float" : size == 2 ? "vec2" : "vec3"; }
+
+std::string literal(glm::vec3 v, int size) {
+  return size == 1 ? float_literal(v.x) : size == 2 ? vec2_literal(glm::vec2(v)) : vec3_literal(v);
+}
+
+// `expression` clamped to [lo, hi] where those are finite, as InputRef reads registers.
+std::string clamped(const std::string& expression, const InputRef& r) {
+  const bool low = std::isfinite(r.lo), high = std::isfinite(r.hi);
+  auto bound = [&](float x) {
+    return r.size == 1 ? float_literal(x) : std::string(type_of_size(r.size)) + "(" + float_literal(x) + ")";
+  };
+  if (low && high) return "clamp(" + expression + ", " + bound(r.lo) + ", " + bound(r.hi) + ")";
+  if (low) return "max(" + expression + ", " + bound(r.lo) + ")";
+  if (high) return "min(" + expression + ", " + bound(r.hi) + ")";
+  return expression;
+}
+
+// An entry's nodes as the user wrote them: "id" (type), the interface and medium of a layer too.
+std::string what_entry(const StackEntry& e) {
+  std::string text = "\"" + e.node + "\" (" + (e.decl ? e.decl->type : std::string("entry"));
+  text += e.note.empty() ? ")" : ", " + e.note + ")";
+  if (!e.interface_node.empty() && e.interface_decl)
+    text += " with \"" + e.interface_node + "\" (" + e.interface_decl->type + ")";
+  if (!e.medium_node.empty() && e.medium_decl) text += " over \"" + e.medium_node + "\" (" + e.medium_decl->type + ")";
+  return text;
+}
+
+// Emits the GLSL of one material: its stack as a constant array of LaminaEntry, a resolve function
+// (the texture nodes' code, each entry's inputs, lamina_stack_resolve) and the three functions that
+// call the kernels' composition. Every value is a literal, a uniform block member or a register.
+class MaterialEmitter final : public OpWriter {
  public:
-  MaterialEmitter(const Program& program, const Options& options, MaterialInterface& out)
-      : p_(program), o_(options), mi_(out), lobes_(collect_lobes(program)) {
+  MaterialEmitter(const Program& program, const Options& options, MaterialInterface& out,
+                  std::map<std::string, std::string>& module_code)
+      : p_(program), o_(options), mi_(out), module_code_(module_code) {
     mi_.material = p_.name;
     mi_.prefix = "lamina_" + name_part(p_.name);
     if (o_.uniforms) {
       mi_.block = mi_.prefix + "_block";
       mi_.instance = mi_.prefix + "_u";
     }
-    for (size_t i = 0; i < p_.stack.size(); ++i) stack_names_.push_back(locals_.unique(name_part(node_id(int(i)))));
   }
 
   std::string emit() {
@@ -94,222 +115,156 @@ class MaterialEmitter {
     for (const SamplerBinding& b : mi_.samplers)
       s << "// node \"" << b.node << "\" (texture/image): " << b.file << ", " << b.width << " x " << b.height
         << " texels\nuniform sampler2D " << b.name << ";\n\n";
+    emit_entries(s);
     s << resolve;
-    std::set<int> done;
-    emit_node(s, p_.root, done);
-    emit_eval(s);
-    emit_lobes(s);
-    emit_pdf(s);
-    emit_sample(s);
+    emit_functions(s);
     return s.str();
   }
 
- private:
-  // --- names and values ---------------------------------------------------------------------------
+  // --- OpWriter: what texture and math nodes write their code with -------------------------------
 
-  std::string node_id(int index) const {
-    return std::visit([](const auto& n) { return n.node; }, p_.stack[size_t(index)]);
+  std::string input(const TextureOp& op, size_t i) override { return input(op.inputs.at(i)); }
+  std::string context(const std::string& member) override { return "ctx." + member; }
+  std::string output(const TextureOp& op, size_t k, const std::string& expression) override {
+    const OutputDecl& o = op.decl->outputs.at(k);
+    const int size = o.type == ValueType::Float ? 1 : o.type == ValueType::Vec2 ? 2 : 3;
+    const std::string name = locals_.unique("t_" + name_part(op.node) + "_" + o.name);
+    ops_ << "  " << type_of_size(size) << " " << name << " = " << expression << ";\n";
+    registers_[op.outputs.at(k)] = name;
+    return name;
   }
-  std::string fn(const std::string& what) const { return mi_.prefix + "_" + what; }
-  std::string node_fn(int index) const { return fn("node_" + stack_names_[size_t(index)]); }
-  std::string params_type() const { return fn("params"); }
-
-  // A member of the uniform block holding `value`, named after the node and parameter that gave it;
-  // a node shared by several layers keeps one member.
-  std::string uniform(const std::string& node, const std::string& parameter, const std::string& type,
-                      std::vector<float> value) {
-    std::string name = name_part(node) + "_" + parameter;
-    for (const UniformField& f : mi_.uniforms)
-      if (f.node == node && f.parameter == parameter) return mi_.instance + "." + f.name;
-    name = block_names_.unique(name);
-    size_t align = std140_align(type);
-    block_end_ = (block_end_ + align - 1) / align * align;
-    mi_.uniforms.push_back({name, type, block_end_, std::move(value), node, parameter});
-    block_end_ += std140_size(type);
-    mi_.block_size = (block_end_ + 15) / 16 * 16;
-    return mi_.instance + "." + name;
+  std::string local(const TextureOp& op, const std::string& what, const std::string& type,
+                    const std::string& expression) override {
+    const std::string name = locals_.unique("t_" + name_part(op.node) + "_" + what);
+    ops_ << "  " << type << " " << name << " = " << expression << ";\n";
+    return name;
   }
-
-  std::string input(const ScalarRef& r, const std::string& node, const std::string& parameter) {
-    if (r.slot >= 0) return scalar_regs_.at(r.slot);
-    if (o_.uniforms) return uniform(node, parameter, "float", {r.constant});
-    return float_literal(r.constant);
-  }
-  std::string input(const ColorRef& r, const std::string& node, const std::string& parameter) {
-    if (r.slot >= 0) return color_regs_.at(r.slot);
-    if (o_.uniforms) return uniform(node, parameter, "vec3", {r.constant.x, r.constant.y, r.constant.z});
-    return vec3_literal(r.constant);
-  }
-  std::string plain(float v, const std::string& node, const std::string& parameter) {
-    return o_.uniforms ? uniform(node, parameter, "float", {v}) : float_literal(v);
-  }
-  std::string plain(glm::vec2 v, const std::string& node, const std::string& parameter) {
-    return o_.uniforms ? uniform(node, parameter, "vec2", {v.x, v.y}) : vec2_literal(v);
-  }
-
-  // A stack parameter after the evaluator's clamping: folded to a literal when it is constant
-  // and inlined (the C++ kernels compute it, so the value is the CPU's to the bit), otherwise the
-  // GLSL expression `glsl` with $ standing for the input.
-  template <typename Ref, typename Fold>
-  std::string resolved(const Ref& r, const std::string& node, const std::string& parameter, Fold fold,
-                       const std::string& glsl) {
-    if (r.slot < 0 && !o_.uniforms) {
-      auto v = fold(r.constant);
-      if constexpr (std::is_same_v<decltype(v), float>)
-        return float_literal(v);
-      else
-        return vec3_literal(v);
-    }
-    return replace_all(glsl, "$", input(r, node, parameter));
-  }
-
-  void field(const std::string& stack_name, const std::string& what, const char* type, const std::string& value,
-             const std::string& comment) {
-    fields_ << "  " << type << " " << stack_name << "_" << what << ";  // " << comment << "\n";
-    assigns_ << "  p." << stack_name << "_" << what << " = " << value << ";\n";
-  }
-
-  static std::string roughness_name(const RoughnessRef& r) { return r.degrees ? "roughness_deg" : "alpha"; }
-  static float slope(const RoughnessRef& r, float value) { return k::lamina_slope(value, r.degrees); }
-  static std::string slope_glsl(const RoughnessRef& r) {
-    return std::string("lamina_slope($, ") + (r.degrees ? "true" : "false") + ")";
-  }
-
-  // --- resolve: texture operations, then the stack's parameters ----------------------------------
-
-  std::string emit_resolve() {
-    std::ostringstream ops;
-    for (const TextureOp& op : p_.ops) std::visit([&](const auto& o) { emit_op(ops, o); }, op);
-    for (size_t i = 0; i < p_.stack.size(); ++i)
-      std::visit([&](const auto& n) { stack_fields(int(i), n); }, p_.stack[i]);
-
-    std::ostringstream s;
-    s << "// The parameters of every stack node at one shading point, clamped to their declared ranges.\n";
-    s << "struct " << params_type() << " {\n" << fields_.str() << "};\n\n";
-    s << params_type() << " " << fn("resolve") << "(vec2 uv) {\n";
-    s << ops.str();
-    s << "  " << params_type() << " p;\n" << assigns_.str() << "  return p;\n}\n\n";
-    return s.str();
-  }
-
-  std::string register_name(const std::string& node, const char* output) {
-    return locals_.unique("t_" + name_part(node) + "_" + output);
-  }
-
-  void emit_op(std::ostringstream& s, const CheckerOp& op) {
-    std::string value = register_name(op.node, "value"), color = register_name(op.node, "color");
-    s << "  // node \"" << op.node << "\" (texture/checker)\n";
-    s << "  float " << value << " = checker_value(uv, " << plain(op.scale, op.node, "scale") << ");\n";
-    s << "  vec3 " << color << " = mix(" << input(op.color_a, op.node, "color_a") << ", "
-      << input(op.color_b, op.node, "color_b") << ", " << value << ");\n";
-    scalar_regs_[op.value_slot] = value;
-    color_regs_[op.color_slot] = color;
-  }
-
-  void emit_op(std::ostringstream& s, const ImageOp& op) {
+  std::string sampler(const TextureOp& op) override {
     SamplerBinding b;
-    b.name = samplers_.unique(fn("image_" + name_part(op.node)));
+    b.name = samplers_.unique(mi_.prefix + "_image_" + name_part(op.node));
     b.node = op.node;
     b.file = op.file;
     b.width = op.image ? op.image->width : 0;
     b.height = op.image ? op.image->height : 0;
     mi_.samplers.push_back(b);
-    std::string texel = register_name(op.node, "texel"), color = register_name(op.node, "color"),
-                value = register_name(op.node, "value"), alpha = register_name(op.node, "alpha");
-    static const char* kWrap[] = {"repeat", "clamp", "mirror"};
-    s << "  // node \"" << op.node << "\" (texture/image), wrap " << kWrap[op.wrap % 3] << "\n";
-    s << call("  vec2 " + texel + "_uv = lamina_image_uv",
-              {"uv", plain(op.uv_rotation_deg, op.node, "uv_rotation_deg"), plain(op.uv_scale, op.node, "uv_scale"),
-               plain(op.uv_offset, op.node, "uv_offset")},
-              ";");
-    s << "  vec4 " << texel << " = lamina_image_bilinear(" << b.name << ", " << texel << "_uv, " << op.wrap << ");\n";
-    s << "  vec3 " << color << " = " << texel << ".xyz;\n";
-    s << "  float " << value << " = lamina_luminance(" << texel << ".xyz);\n";
-    s << "  float " << alpha << " = " << texel << ".w;\n";
-    color_regs_[op.color_slot] = color;
-    scalar_regs_[op.value_slot] = value;
-    scalar_regs_[op.alpha_slot] = alpha;
+    return b.name;
+  }
+  void module_code(const std::string& name, const std::string& text) override { module_code_.emplace(name, text); }
+  void comment(const std::string& text) override { ops_ << "  // " << text << "\n"; }
+
+ private:
+  std::string fn(const std::string& what) const { return mi_.prefix + "_" + what; }
+  std::string count() const { return fn("count"); }
+  std::string entries() const { return fn("entries"); }
+  std::string clamp_flag() const { return p_.clamp_lower_roughness ? "true" : "false"; }
+  // An untextured material in an inlined module: its parameters are constants, resolved here by
+  // the kernels the CPU runs (to the bit), so the module holds them instead of their inputs.
+  bool fixed() const { return !p_.textured() && !o_.uniforms; }
+
+  // A member of the uniform block holding `value`, named after the node and parameter that gave it;
+  // a node shared by several entries keeps one member.
+  std::string uniform(const InputRef& r, glm::vec3 value) {
+    for (const UniformField& f : mi_.uniforms)
+      if (f.node == r.node && f.parameter == r.parameter) return mi_.instance + "." + f.name;
+    const std::string type = type_of_size(r.size);
+    const std::string name = block_names_.unique(name_part(r.node) + "_" + r.parameter);
+    size_t align = std140_align(type);
+    block_end_ = (block_end_ + align - 1) / align * align;
+    std::vector<float> v{value.x, value.y, value.z};
+    v.resize(size_t(r.size));
+    mi_.uniforms.push_back({name, type, block_end_, std::move(v), r.node, r.parameter});
+    block_end_ += std140_size(type);
+    mi_.block_size = (block_end_ + 15) / 16 * 16;
+    return mi_.instance + "." + name;
   }
 
-  void emit_op(std::ostringstream& s, const RemapOp& op) {
-    std::string value = register_name(op.node, "value");
-    s << "  // node \"" << op.node << "\" (math/remap)\n";
-    s << call(
-        "  float " + value + " = remap_value",
-        {input(op.value, op.node, "value"), plain(op.in_min, op.node, "in_min"), plain(op.in_max, op.node, "in_max"),
-         plain(op.out_min, op.node, "out_min"), plain(op.out_max, op.node, "out_max"), op.clamp ? "true" : "false"},
-        ";");
-    scalar_regs_[op.value_slot] = value;
+  // An input: the register's variable (clamped), a uniform member, or the literal `folded` (the
+  // constant as the kernels read it).
+  std::string input(const InputRef& r, glm::vec3 folded) {
+    if (r.linked()) return clamped(registers_.at(r.slot), r);
+    if (o_.uniforms && !r.parameter.empty()) return uniform(r, r.constant);
+    return literal(folded, r.size);
   }
+  std::string input(const InputRef& r) { return input(r, r.constant); }
 
-  void stack_fields(int index, const LayerNode& n) {
-    const std::string& sn = stack_names_[size_t(index)];
-    const auto& d = std::get<DielectricInterface>(n.interface);
-    field(sn, "ior", "float",
-          resolved(
-              d.ior, d.node, "ior", [](float x) { return glm::clamp(x, 1.0f, 4.0f); }, "clamp($, 1.0f, 4.0f)"),
-          "interface \"" + d.node + "\": absolute index below it");
-    field(sn, "m", "float",
-          resolved(
-              d.roughness.value, d.node, roughness_name(d.roughness), [&](float x) { return slope(d.roughness, x); },
-              slope_glsl(d.roughness)),
-          "interface \"" + d.node + "\": Beckmann RMS slope");
-    if (const auto* a = std::get_if<AbsorbingMedium>(&n.medium)) {
-      field(sn, "absorption", "vec3",
-            resolved(
-                a->absorption, a->node, "absorption", [](glm::vec3 c) { return glm::max(c, glm::vec3(0.0f)); },
-                "max($, vec3(0.0f))"),
-            "medium \"" + a->node + "\": per micrometre");
-      field(sn, "thickness", "float",
-            resolved(
-                a->thickness, a->node, "thickness", [](float x) { return glm::max(x, 0.0f); }, "max($, 0.0f)"),
-            "medium \"" + a->node + "\": micrometres");
+  // --- the stack ------------------------------------------------------------------------------------
+
+  void emit_entries(std::ostringstream& s) {
+    const size_t n = p_.stack.size();
+    s << "// The stack, depth first from the surface: LaminaEntry(kind, model, medium, distribution,\n"
+         "// fresnel, degrees, parent, side, first, second), as nodes/kernels/stack.glsl defines them.\n";
+    s << "const int " << count() << " = " << n << ";\n";
+    s << "const LaminaEntry " << entries() << "[LAMINA_STACK] = LaminaEntry[LAMINA_STACK](\n";
+    for (size_t i = 0; i < stack_length_; ++i) {
+      const bool used = i < n;
+      const kernels::LaminaEntry e = used ? kernel_entry(p_.stack[i], !o_.uniforms)
+                                          : kernels::LaminaEntry{kernels::LAMINA_MIX, 0, 0, 0, 0, 0, -1, 0, -1, -1};
+      s << "    LaminaEntry(" << e.kind << ", " << e.model << ", " << e.medium << ", " << e.distribution << ", "
+        << e.fresnel << ", " << e.degrees << ", " << e.parent << ", " << e.side << ", " << e.first << ", " << e.second
+        << ")" << (i + 1 < stack_length_ ? "," : "");
+      s << "  // " << (used ? std::to_string(i) + ": " + what_entry(p_.stack[i]) : std::string("unused")) << "\n";
     }
+    s << ");\n\n";
   }
-  void stack_fields(int index, const MixNode& n) {
-    field(stack_names_[size_t(index)], "weight", "float",
-          resolved(
-              n.weight, n.node, "weight", [](float x) { return glm::clamp(x, 0.0f, 1.0f); }, "clamp($, 0.0f, 1.0f)"),
-          "mix \"" + n.node + "\": share of b");
-  }
-  void stack_fields(int index, const LambertNode& n) {
-    field(stack_names_[size_t(index)], "albedo", "vec3", clamped_albedo(n.albedo, n.node),
-          "lambert \"" + n.node + "\"");
-  }
-  void stack_fields(int index, const OrenNayarNode& n) {
-    const std::string& sn = stack_names_[size_t(index)];
-    field(sn, "albedo", "vec3", clamped_albedo(n.albedo, n.node), "oren_nayar \"" + n.node + "\"");
-    field(sn, "sigma", "float",
-          resolved(
-              n.sigma, n.node, "sigma", [](float x) { return glm::clamp(x, 0.0f, k::LAMINA_PI / 2.0f); },
-              "clamp($, 0.0f, LAMINA_PI / 2.0f)"),
-          "oren_nayar \"" + n.node + "\": radians");
-  }
-  void stack_fields(int index, const ConductorNode& n) {
-    const std::string& sn = stack_names_[size_t(index)];
-    std::string what = "conductor \"" + n.node + "\"" + (n.metal.empty() ? "" : " (" + n.metal + ")");
-    field(sn, "n", "vec3",
-          resolved(
-              n.n, n.node, "n",
-              [](glm::vec3 c) { return glm::clamp(c, glm::vec3(1.0e-3f), glm::vec3(float(kMaxConductorIndex))); },
-              "clamp($, vec3(1.0e-3f), vec3(" + float_literal(float(kMaxConductorIndex)) + "))"),
-          what + ": absolute index");
-    field(sn, "k", "vec3",
-          resolved(
-              n.k, n.node, "k",
-              [](glm::vec3 c) { return glm::clamp(c, glm::vec3(0.0f), glm::vec3(float(kMaxConductorIndex))); },
-              "clamp($, vec3(0.0f), vec3(" + float_literal(float(kMaxConductorIndex)) + "))"),
-          what + ": extinction");
-    field(sn, "m", "float",
-          resolved(
-              n.roughness.value, n.node, roughness_name(n.roughness), [&](float x) { return slope(n.roughness, x); },
-              slope_glsl(n.roughness)),
-          what + ": Beckmann RMS slope");
-  }
-  std::string clamped_albedo(const ColorRef& albedo, const std::string& node) {
-    return resolved(
-        albedo, node, "albedo", [](glm::vec3 c) { return glm::clamp(c, glm::vec3(0.0f), glm::vec3(1.0f)); },
-        "clamp($, vec3(0.0f), vec3(1.0f))");
+
+  std::string emit_resolve() {
+    std::ostringstream s;
+    s << "// Every entry's parameters at the shading point ctx.\n";
+    s << "void " << fn("resolve") << "(LaminaContext ctx, out LaminaParams params[LAMINA_STACK]) {\n";
+    if (fixed()) {
+      // Resolved once, by the C++ kernels, into constants.
+      std::vector<kernels::LaminaEntry> e;
+      std::vector<kernels::LaminaInputs> x;
+      for (const StackEntry& entry : p_.stack) {
+        e.push_back(kernel_entry(entry, true));
+        x.push_back(kernel_constants(entry, true));
+      }
+      std::vector<kernels::LaminaParams> params(p_.stack.size());
+      kernels::lamina_stack_resolve(int(e.size()), e.data(), x.data(), p_.clamp_lower_roughness, params.data());
+      for (size_t i = 0; i < params.size(); ++i) {
+        const kernels::LaminaParams& q = params[i];
+        const std::string at = "  params[" + std::to_string(i) + "].";
+        s << "  // " << i << ": " << what_entry(p_.stack[i]) << "\n";
+        s << at << "n_above = " << float_literal(q.n_above) << ";\n"
+          << at << "m_above = " << float_literal(q.m_above) << ";\n"
+          << at << "ior = " << float_literal(q.ior) << ";\n"
+          << at << "eta = " << float_literal(q.eta) << ";\n"
+          << at << "m = " << float_literal(q.m) << ";\n"
+          << at << "thickness = " << float_literal(q.thickness) << ";\n"
+          << at << "weight = " << float_literal(q.weight) << ";\n"
+          << at << "sigma = " << float_literal(q.sigma) << ";\n"
+          << at << "absorption = " << vec3_literal(q.absorption) << ";\n"
+          << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
+          << at << "n = " << vec3_literal(q.n) << ";\n"
+          << at << "k = " << vec3_literal(q.k) << ";\n"
+          << at << "normal = " << vec3_literal(q.normal) << ";\n";
+      }
+      s << "}\n\n";
+      return s.str();
+    }
+    for (const TextureOp& op : p_.ops) {
+      ops_ << "  // node \"" << op.node << "\" (" << op.decl->type << ")\n";
+      op.decl->emit_glsl(op, *this);
+    }
+    std::ostringstream inputs;
+    inputs << "  LaminaInputs inputs[LAMINA_STACK];\n";
+    for (size_t i = 0; i < p_.stack.size(); ++i) {
+      const StackEntry& e = p_.stack[i];
+      const kernels::LaminaInputs folded = kernel_constants(e, !o_.uniforms);
+      const std::string at = "  inputs[" + std::to_string(i) + "].";
+      inputs << "  // " << i << ": " << what_entry(e) << "\n";
+      inputs << at << "colour0 = " << input(e.colour0, folded.colour0) << ";\n";
+      inputs << at << "colour1 = " << input(e.colour1, folded.colour1) << ";\n";
+      inputs << at << "colour2 = " << input(e.colour2, folded.colour2) << ";\n";
+      inputs << at << "scalars = vec4(" << input(e.scalar_x, glm::vec3(folded.scalars.x)) << ", "
+             << input(e.scalar_y, glm::vec3(folded.scalars.y)) << ", " << input(e.scalar_z, glm::vec3(folded.scalars.z))
+             << ", 0.0f);\n";
+      inputs << at << "normal = " << input(e.normal, folded.normal) << ";\n";
+    }
+    s << ops_.str() << inputs.str();
+    s << "  lamina_stack_resolve(" << count() << ", " << entries() << ", inputs, " << clamp_flag()
+      << ", params);\n}\n\n";
+    return s.str();
   }
 
   void emit_block(std::ostringstream& s) {
@@ -322,268 +277,54 @@ class MaterialEmitter {
     s << "} " << mi_.instance << ";\n\n";
   }
 
-  // --- eval: one function per stack node, bottom up ----------------------------------------------
+  // --- the functions: the kernels' composition on the resolved parameters ---------------------------
 
-  std::string clamp_flag() const { return p_.clamp_lower_roughness ? "true" : "false"; }
-
-  void emit_node(std::ostringstream& s, int index, std::set<int>& done) {
-    if (!done.insert(index).second) return;
-    const StackNode& node = p_.stack[size_t(index)];
-    if (const auto* layer = std::get_if<LayerNode>(&node)) emit_node(s, layer->base, done);
-    if (const auto* mix = std::get_if<MixNode>(&node)) {
-      emit_node(s, mix->a, done);
-      emit_node(s, mix->b, done);
-    }
-    const std::string& sn = stack_names_[size_t(index)];
-    std::string signature = call("vec3 " + node_fn(index),
-                                 {params_type() + " p", "vec3 l", "vec3 v", "float n_above", "float m_above"}, " {");
-    if (const auto* layer = std::get_if<LayerNode>(&node)) {
-      const auto& d = std::get<DielectricInterface>(layer->interface);
-      const auto* a = std::get_if<AbsorbingMedium>(&layer->medium);
-      std::string medium_node = a ? a->node : std::get<ClearMedium>(layer->medium).node;
-      s << "// node \"" << layer->node << "\" (layer): interface \"" << d.node << "\" (interface/dielectric, "
-        << distribution_name(d.distribution) << ")";
-      if (a)
-        s << ", medium \"" << a->node << "\" (medium/absorbing)";
-      else if (!medium_node.empty())
-        s << ", medium \"" << medium_node << "\" (medium/clear)";
-      s << ", base \"" << node_id(layer->base) << "\".\n";
-      s << "// f = f_interface + f_below(L', V') T a t (course sec. 3.1, Elek eq. 2).\n" << signature;
-      s << "  float m = lamina_effective_slope(p." << sn << "_m, m_above, " << clamp_flag() << ");\n";
-      s << "  vec3 l_below;\n  vec3 v_below;\n  vec3 carry;\n";
-      s << call("  vec3 f = lamina_interface_eval",
-                {"l", "v", "p." + sn + "_ior / n_above", std::to_string(int(d.distribution)),
-                 std::to_string(int(d.fresnel)), "m", a ? "p." + sn + "_absorption" : "vec3(0.0f)",
-                 a ? "p." + sn + "_thickness" : "0.0f", "l_below", "v_below", "carry"},
-                ";");
-      s << "  if (l_below.z <= 0.0f || v_below.z <= 0.0f) {\n    return f;\n  }\n";
-      s << "  return f + " << node_fn(layer->base) << "(p, l_below, v_below, p." << sn << "_ior, m) * carry;\n}\n\n";
-    } else if (const auto* mix = std::get_if<MixNode>(&node)) {
-      s << "// node \"" << mix->node << "\" (mix): \"" << node_id(mix->a) << "\" and \"" << node_id(mix->b) << "\".\n"
-        << signature;
-      s << call("  return mix",
-                {node_fn(mix->a) + "(p, l, v, n_above, m_above)", node_fn(mix->b) + "(p, l, v, n_above, m_above)",
-                 "p." + sn + "_weight"},
-                ";")
-        << "}\n\n";
-    } else if (const auto* lambert = std::get_if<LambertNode>(&node)) {
-      s << "// node \"" << lambert->node << "\" (substrate/lambert).\n" << signature;
-      s << "  return lamina_lambert_eval(l, v, p." << sn << "_albedo);\n}\n\n";
-    } else if (const auto* on = std::get_if<OrenNayarNode>(&node)) {
-      s << "// node \"" << on->node << "\" (substrate/oren_nayar).\n" << signature;
-      s << "  return oren_nayar(l, v, p." << sn << "_albedo, p." << sn << "_sigma);\n}\n\n";
-    } else if (const auto* c = std::get_if<ConductorNode>(&node)) {
-      s << "// node \"" << c->node << "\" (substrate/conductor, " << distribution_name(c->distribution)
-        << "): the metal's index relative to the medium above it.\n"
-        << signature;
-      s << "  float m = lamina_effective_slope(p." << sn << "_m, m_above, " << clamp_flag() << ");\n";
-      s << "  return lamina_conductor_eval(l, v, p." << sn << "_n / n_above, p." << sn << "_k / n_above, "
-        << int(c->distribution) << ", " << int(c->fresnel) << ", m);\n}\n\n";
-    }
-  }
-
-  void emit_eval(std::ostringstream& s) {
-    s << "vec3 " << fn("eval_p") << "(" << params_type() << " p, vec3 wi, vec3 wo) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
-    s << "  return max(" << node_fn(p_.root) << "(p, wi, wo, 1.0f, 0.0f), vec3(0.0f));\n}\n\n";
+  void emit_functions(std::ostringstream& s) {
+    const std::string params = "  LaminaParams params[LAMINA_STACK];\n  " + fn("resolve") + "(ctx, params);\n";
+    const std::string select =
+        "  float weight[LAMINA_STACK];\n  vec3 v[LAMINA_STACK];\n  bool valid[LAMINA_STACK];\n"
+        "  lamina_stack_select(" +
+        count() + ", " + entries() + ", params, wo, weight, v, valid);\n";
+    const std::string stack = count() + ", " + entries() + ", params";
     s << "// The BRDF f(wi, wo) of \"" << p_.name << "\", without the cosine; 0 below the horizon.\n";
-    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, vec2 uv) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
-    s << "  return " << fn("eval_p") << "(" << fn("resolve") << "(uv), wi, wo);\n}\n\n";
-  }
-
-  // --- lobes, pdf, sample -------------------------------------------------------------------------
-
-  // The absolute index above each layer of a lobe's path, as GLSL expressions: "1.0f" at the top.
-  struct PathLayer {
-    int node;
-    std::string n_above;  // the index above this layer
-  };
-  std::vector<PathLayer> path_layers(const Lobe& lobe) const {
-    std::vector<PathLayer> layers;
-    std::string n_above = "1.0f";
-    for (const LobeStep& step : lobe.path) {
-      if (!std::holds_alternative<LayerNode>(p_.stack[size_t(step.node)])) continue;
-      layers.push_back({step.node, n_above});
-      n_above = "p." + stack_names_[size_t(step.node)] + "_ior";
-    }
-    return layers;
-  }
-  std::string frame_index(const Lobe& lobe) const {
-    auto layers = path_layers(lobe);
-    return layers.empty() ? "1.0f" : "p." + stack_names_[size_t(layers.back().node)] + "_ior";
-  }
-  bool microfacet(const Lobe& lobe) const {
-    const StackNode& n = p_.stack[size_t(lobe.node)];
-    return std::holds_alternative<LayerNode>(n) || std::holds_alternative<ConductorNode>(n);
-  }
-  int distribution(const Lobe& lobe) const {
-    const StackNode& n = p_.stack[size_t(lobe.node)];
-    if (const auto* l = std::get_if<LayerNode>(&n))
-      return int(std::get<DielectricInterface>(l->interface).distribution);
-    if (const auto* c = std::get_if<ConductorNode>(&n)) return int(c->distribution);
-    return 0;
-  }
-  std::string count() const { return std::to_string(lobes_.size()); }
-  std::string lobe_arrays() const {
-    return "  float weight[" + count() + "];\n  vec3 v[" + count() + "];\n  float m[" + count() + "];\n  bool valid[" +
-           count() + "];\n  " + fn("lobes") + "(p, wo, weight, v, m, valid);\n";
-  }
-  std::string lobe_comment(size_t j) const {
-    return "lobe " + std::to_string(j) + ": " + lobes_[j].name + ", node \"" + node_id(lobes_[j].node) + "\"";
-  }
-
-  void emit_lobes(std::ostringstream& s) {
-    s << "// Lobe selection at wo (course sec. 3.2.3): each lobe's Fresnel reflectance or albedo, times\n"
-         "// (1 - F)^2 and the absorption of every layer above it along the refracted wo, times the mix\n"
-         "// weights on its path, plus a floor of 1% of the mean; normalised. v, m: wo and the slope in\n"
-         "// the lobe's own frame; valid: wo reaches it.\n";
-    s << call("void " + fn("lobes"),
-              {params_type() + " p", "vec3 wo", "out float weight[" + count() + "]", "out vec3 v[" + count() + "]",
-               "out float m[" + count() + "]", "out bool valid[" + count() + "]"},
-              " {");
-    s << "  float total = 0.0f;\n";
-    for (size_t j = 0; j < lobes_.size(); ++j) {
-      const Lobe& lobe = lobes_[j];
-      std::string J = "[" + std::to_string(j) + "]";
-      s << "  // " << lobe_comment(j) << "\n  {\n";
-      s << "    v" << J << " = wo;\n    valid" << J << " = wo.z > 0.0f;\n";
-      s << "    float throughput = 1.0f;\n    float m_above = 0.0f;\n    float factor = 0.0f;\n";
-      std::string n_above = "1.0f";
-      for (const LobeStep& step : lobe.path) {
-        const StackNode& node = p_.stack[size_t(step.node)];
-        const std::string& sn = stack_names_[size_t(step.node)];
-        if (std::holds_alternative<MixNode>(node)) {
-          s << "    throughput *= " << (step.side == 0 ? "1.0f - p." + sn + "_weight" : "p." + sn + "_weight") << ";\n";
-          continue;
-        }
-        const auto& layer = std::get<LayerNode>(node);
-        bool absorbing = std::holds_alternative<AbsorbingMedium>(layer.medium);
-        s << "    if (valid" << J << ") {\n";
-        s << call("      vec3 below = lamina_selection_step",
-                  {"v" + J, "p." + sn + "_ior / " + n_above,
-                   std::to_string(int(std::get<DielectricInterface>(layer.interface).fresnel)),
-                   absorbing ? "p." + sn + "_absorption" : "vec3(0.0f)", absorbing ? "p." + sn + "_thickness" : "0.0f",
-                   "factor"},
-                  ";");
-        s << "      if (below.z <= 0.0f) {\n        valid" << J << " = false;\n      } else {\n";
-        s << "        throughput *= factor;\n";
-        s << "        m_above = " << (p_.clamp_lower_roughness ? "max(p." + sn + "_m, m_above)" : "p." + sn + "_m")
-          << ";\n";
-        s << "        v" << J << " = below;\n      }\n    }\n";
-        n_above = "p." + sn + "_ior";
-      }
-      const StackNode& node = p_.stack[size_t(lobe.node)];
-      const std::string& sn = stack_names_[size_t(lobe.node)];
-      std::string estimate;
-      if (const auto* l = std::get_if<LayerNode>(&node))
-        estimate = "lamina_fresnel_dielectric(" +
-                   std::to_string(int(std::get<DielectricInterface>(l->interface).fresnel)) + ", v" + J + ".z, p." +
-                   sn + "_ior / " + n_above + ")";
-      else if (const auto* c = std::get_if<ConductorNode>(&node))
-        estimate = "lamina_luminance(lamina_fresnel_conductor(" + std::to_string(int(c->fresnel)) + ", v" + J +
-                   ".z, p." + sn + "_n / " + n_above + ", p." + sn + "_k / " + n_above + "))";
-      else
-        estimate = "lamina_luminance(p." + sn + "_albedo)";
-      s << "    float estimate = 0.0f;\n    if (valid" << J << ") {\n      estimate = " << estimate
-        << ";\n      estimate *= throughput;\n    }\n";
-      s << "    m" << J << " = lamina_effective_slope(" << (microfacet(lobe) ? "p." + sn + "_m" : "0.0f")
-        << ", m_above, " << clamp_flag() << ");\n";
-      s << "    weight" << J << " = estimate;\n    total += estimate;\n  }\n";
-    }
-    s << "  int valid_count = 0;\n";
-    s << "  for (int j = 0; j < " << count() << "; ++j) {\n    valid_count += valid[j] ? 1 : 0;\n  }\n";
-    s << "  if (valid_count == 0) {\n    for (int j = 0; j < " << count()
-      << "; ++j) {\n      weight[j] = 0.0f;\n    }\n    return;\n  }\n";
-    s << "  float floor_share = total > 0.0f ? 0.01f * total / float(valid_count) : 1.0f;\n";
-    s << "  float sum = 0.0f;\n";
-    s << "  for (int j = 0; j < " << count() << "; ++j) {\n    if (valid[j]) {\n      weight[j] += floor_share;\n"
-      << "    }\n    sum += weight[j];\n  }\n";
-    s << "  for (int j = 0; j < " << count() << "; ++j) {\n    weight[j] /= sum;\n  }\n}\n\n";
-  }
-
-  void emit_pdf(std::ostringstream& s) {
-    s << "float " << fn("pdf_p") << "(" << params_type() << " p, vec3 wi, vec3 wo) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << lobe_arrays();
-    s << "  float density = 0.0f;\n";
-    for (size_t j = 0; j < lobes_.size(); ++j) {
-      const Lobe& lobe = lobes_[j];
-      std::string J = "[" + std::to_string(j) + "]";
-      s << "  // " << lobe_comment(j) << "\n";
-      s << "  if (weight" << J << " > 0.0f && valid" << J << ") {\n";
-      s << "    vec3 w = wi;\n    float jacobian = 1.0f;\n";
-      for (const PathLayer& layer : path_layers(lobe)) {
-        const std::string& sn = stack_names_[size_t(layer.node)];
-        s << "    {\n      float eta = p." << sn << "_ior / " << layer.n_above << ";\n";
-        s << "      vec3 below = refract_down(w, eta);\n";
-        s << "      jacobian *= refraction_jacobian(w.z, below.z, eta);\n      w = below;\n    }\n";
-      }
-      s << "    if (w.z > 0.0f) {\n";
-      if (microfacet(lobe))
-        s << call("      density += weight" + J + " * lamina_microfacet_lobe_pdf",
-                  {std::to_string(distribution(lobe)), "m" + J, "v" + J, "w", "jacobian", "wi", frame_index(lobe)},
-                  ";");
-      else
-        s << call("      density += weight" + J + " * lamina_diffuse_lobe_pdf", {"w", "jacobian", frame_index(lobe)},
-                  ";");
-      s << "    }\n  }\n";
-    }
-    s << "  return density;\n}\n\n";
+    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params;
+    s << "  return lamina_stack_eval(" << stack << ", wi, wo);\n}\n\n";
     s << "// The density (per solid angle) with which " << fn("sample") << " draws wi.\n";
-    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, vec2 uv) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n";
-    s << "  return " << fn("pdf_p") << "(" << fn("resolve") << "(uv), wi, wo);\n}\n\n";
-  }
-
-  void emit_sample(std::ostringstream& s) {
+    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << params << select;
+    s << "  return lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n}\n\n";
     s << "// Draws wi for wo: u_layer chooses the lobe, u the direction in it. Returns f(wi, wo); pdf is\n"
          "// the density of wi over all lobes, 0 (with wi = 0) when nothing was drawn.\n";
+    s << call("vec3 " + fn("sample"),
+              {"vec3 wo", "vec2 u", "float u_layer", "LaminaContext ctx", "out vec3 wi", "out float pdf"}, " {");
+    s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params << select;
+    s << "  int chosen = lamina_stack_choose(" << count() << ", weight, u_layer);\n";
+    s << "  vec3 d = lamina_stack_sample(" << entries() << ", params, v, chosen, u);\n";
+    s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
+    s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
+    s << "  return lamina_stack_eval(" << stack << ", wi, wo);\n}\n\n";
+    s << "// The same at a texture coordinate alone (the other members of the context at their defaults).\n";
+    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, vec2 uv) {\n  return " << fn("eval")
+      << "(wi, wo, lamina_context(uv));\n}\n\n";
+    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, vec2 uv) {\n  return " << fn("pdf")
+      << "(wi, wo, lamina_context(uv));\n}\n\n";
     s << call("vec3 " + fn("sample"), {"vec3 wo", "vec2 u", "float u_layer", "vec2 uv", "out vec3 wi", "out float pdf"},
               " {");
-    s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
-    s << "  " << params_type() << " p = " << fn("resolve") << "(uv);\n" << lobe_arrays();
-    s << "  int chosen = -1;\n  float cumulative = 0.0f;\n";
-    s << "  for (int j = 0; j < " << count() << "; ++j) {\n";
-    s << "    if (weight[j] <= 0.0f) {\n      continue;\n    }\n";
-    s << "    chosen = j;\n    cumulative += weight[j];\n    if (u_layer < cumulative) {\n      break;\n    }\n  }\n";
-    s << "  vec3 d = vec3(0.0f);\n  bool inside_cone = true;\n";
-    for (size_t j = 0; j < lobes_.size(); ++j) {
-      const Lobe& lobe = lobes_[j];
-      std::string J = "[" + std::to_string(j) + "]";
-      s << (j == 0 ? "  if" : " else if") << " (chosen == " << j << ") {\n";
-      s << "    // " << lobe_comment(j) << "\n";
-      if (microfacet(lobe))
-        s << call("    d = lamina_sample_microfacet_lobe",
-                  {std::to_string(distribution(lobe)), "m" + J, "v" + J, "u", frame_index(lobe), "inside_cone"}, ";");
-      else
-        s << "    d = lamina_sample_diffuse_lobe(u, " << frame_index(lobe) << ");\n";
-      auto layers = path_layers(lobe);
-      if (!layers.empty()) {
-        s << "    // up through the layers above, bottom first\n";
-        s << "    if (d.z > 0.0f && inside_cone) {\n";
-        for (auto it = layers.rbegin(); it != layers.rend(); ++it) {
-          const std::string& sn = stack_names_[size_t(it->node)];
-          s << "      if (d.z > 0.0f) {\n        d = refract_up(d, p." << sn << "_ior / " << it->n_above
-            << ");\n      }\n";
-        }
-        s << "    }\n";
-      }
-      s << "  }";
-    }
-    s << "\n  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
-    s << "  wi = normalize(d);\n";
-    s << "  pdf = " << fn("pdf_p") << "(p, wi, wo);\n";
-    s << "  return " << fn("eval_p") << "(p, wi, wo);\n}\n\n";
+    s << "  return " << fn("sample") << "(wo, u, u_layer, lamina_context(uv), wi, pdf);\n}\n\n";
   }
 
+ public:
+  size_t stack_length_ = 1;  // LAMINA_STACK of the module
+
+ private:
   const Program& p_;
   const Options& o_;
   MaterialInterface& mi_;
-  std::vector<Lobe> lobes_;
-  std::vector<std::string> stack_names_;
+  std::map<std::string, std::string>& module_code_;
   NameTable locals_, block_names_, samplers_;
-  std::map<int, std::string> scalar_regs_, color_regs_;
-  std::ostringstream fields_, assigns_;
+  std::map<int, std::string> registers_;
+  std::ostringstream ops_;
   size_t block_end_ = 0;
 };
 
@@ -591,13 +332,15 @@ void validate(const Program& p) {
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument("GLSL back end: material '" + p.name + "': " + why);
   };
-  if (p.root < 0 || p.root >= int(p.stack.size())) bad("no surface");
-  for (const StackNode& n : p.stack) {
-    if (const auto* l = std::get_if<LayerNode>(&n); l && (l->base < 0 || l->base >= int(p.stack.size())))
+  if (p.stack.empty()) bad("no surface");
+  if (int(p.stack.size()) > kMaxStackEntries) bad("more stack entries than the kernels hold");
+  for (const StackEntry& e : p.stack) {
+    if (e.kind == kernels::LAMINA_LAYER && (e.first <= 0 || e.first >= int(p.stack.size())))
       bad("a layer without a base");
-    if (const auto* m = std::get_if<MixNode>(&n); m && (m->a < 0 || m->b < 0)) bad("a mix without two stacks");
+    if (e.kind == kernels::LAMINA_MIX && (e.first <= 0 || e.second <= 0)) bad("a mix without two stacks");
   }
-  if (collect_lobes(p).empty()) bad("no lobes");
+  for (const TextureOp& op : p.ops)
+    if (!op.decl || !op.decl->emit_glsl) bad("node \"" + op.node + "\" has no GLSL");
 }
 
 std::string header(std::span<const Program> programs, const Module& module, const Options& o) {
@@ -608,11 +351,14 @@ std::string header(std::span<const Program> programs, const Module& module, cons
     s << "// material \"" << programs[i].name << "\" from " << source_name(programs[i]) << "\n";
   s << "//\n"
        "// Per material NAME, in the local shading frame (z the normal; wi towards the light, wo towards\n"
-       "// the viewer, both away from the surface and normalised; f excludes the cosine):\n"
-       "//   vec3  lamina_NAME_eval(vec3 wi, vec3 wo, vec2 uv)    BRDF f(wi, wo); 0 below the horizon\n"
-       "//   float lamina_NAME_pdf(vec3 wi, vec3 wo, vec2 uv)     density of wi under lamina_NAME_sample\n"
-       "//   vec3  lamina_NAME_sample(vec3 wo, vec2 u, float u_layer, vec2 uv, out vec3 wi, out float pdf)\n"
-       "//         draws wi with u, u_layer uniform in [0, 1); returns f(wi, wo); pdf = 0 if none\n";
+       "// the viewer, both away from the surface and normalised; f excludes the cosine), at a shading\n"
+       "// context ctx (a LaminaContext: uv, position, normal, tangent, view_distance, footprint; make one\n"
+       "// with lamina_context(uv) and set what you have):\n"
+       "//   vec3  lamina_NAME_eval(vec3 wi, vec3 wo, LaminaContext ctx)  BRDF f(wi, wo); 0 below the horizon\n"
+       "//   float lamina_NAME_pdf(vec3 wi, vec3 wo, LaminaContext ctx)   density of wi under lamina_NAME_sample\n"
+       "//   vec3  lamina_NAME_sample(vec3 wo, vec2 u, float u_layer, LaminaContext ctx, out vec3 wi, out float pdf)\n"
+       "//         draws wi with u, u_layer uniform in [0, 1); returns f(wi, wo); pdf = 0 if none\n"
+       "// and the same three with a vec2 uv in place of ctx.\n";
   for (const MaterialInterface& m : module.materials) {
     if (!m.block.empty()) {
       s << "//\n// uniform block " << m.block << " (instance " << m.instance << "), std140, " << m.block_size
@@ -635,20 +381,6 @@ std::string header(std::span<const Program> programs, const Module& module, cons
   return s.str();
 }
 
-const char* kImageGlue =
-    R"(// texture/image lookups: bilinear filtering and wrapping done here with texelFetch, exactly as the
-// CPU evaluator does them, so results agree whatever sampler state the host sets.
-vec4 lamina_image_bilinear(sampler2D image, vec2 uv, int wrap) {
-  ivec2 size = textureSize(image, 0);
-  ivec4 t;
-  vec2 w = lamina_bilinear_texels(uv, size.x, size.y, wrap, t);
-  vec4 top = mix(texelFetch(image, t.xy, 0), texelFetch(image, t.zy, 0), w.x);
-  vec4 bottom = mix(texelFetch(image, t.xw, 0), texelFetch(image, t.zw, 0), w.x);
-  return mix(top, bottom, w.y);
-}
-
-)";
-
 }  // namespace
 
 Module generate(std::span<const Program> programs, const Options& options) {
@@ -657,9 +389,13 @@ Module generate(std::span<const Program> programs, const Options& options) {
   Module module;
   std::vector<std::string> bodies;
   std::set<std::string> prefixes;
+  std::map<std::string, std::string> module_code;  // what texture nodes need once per module
+  size_t stack_length = 1;
+  for (const Program& p : programs) stack_length = std::max(stack_length, p.stack.size());
   for (const Program& p : programs) {
     module.materials.emplace_back();
-    MaterialEmitter emitter(p, options, module.materials.back());
+    MaterialEmitter emitter(p, options, module.materials.back(), module_code);
+    emitter.stack_length_ = stack_length;
     bodies.push_back(emitter.emit());
     if (!prefixes.insert(module.materials.back().prefix).second)
       throw std::invalid_argument("GLSL back end: materials '" + p.name + "' and another give the same GLSL prefix " +
@@ -668,14 +404,12 @@ Module generate(std::span<const Program> programs, const Options& options) {
   std::ostringstream s;
   s << version_line(options.target) << "\n";
   s << header(programs, module, options) << "\n";
-  s << "#define LAMINA_FN\n#define LAMINA_OUT(T) out T\n";
   if (options.target == Target::Es300)
     s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n";
-  s << "\n";
+  // The arrays of the kernels' composition hold the largest material's stack.
+  s << "#define LAMINA_STACK " << stack_length << "\n\n";
   std::string code;  // everything after the kernels: what decides which kernels are needed
-  bool images = false;
-  for (const MaterialInterface& m : module.materials) images = images || !m.samplers.empty();
-  if (images) code += kImageGlue;
+  for (const auto& [name, text] : module_code) code += text;
   for (const std::string& body : bodies) code += body;
   if (options.sphere_shader) code += sphere_shader(module.materials.front().prefix);
   s << needed_kernels(kernel_sources(), code) << code;

@@ -9,12 +9,28 @@
 //     and square root is guarded;
 //   - m is the Beckmann RMS slope, tan of the course's roughness angle.
 // Rules of the subset: float literals carry the f suffix, conversions are explicit (float(i)),
-// no overloading, recursion, arrays, structs, default arguments, swizzle assignment or inout.
+// no overloading, recursion, default arguments, swizzle assignment, inout, struct constructors or
+// struct initialisers (assign members one by one). Structs and arrays of them are fine; array and
+// struct parameters are written with the macros below, and an array parameter's size is always
+// LAMINA_STACK.
 
-// Every kernel is declared `LAMINA_FN type name(...)`: `inline` in C++ (kernels.h), empty in GLSL.
-// The GLSL prelude defines it; this default keeps the files valid GLSL on their own.
+// The macros the kernels are written with. kernels.h defines them for C++ before it includes the
+// files; this is their GLSL meaning, which the GLSL back end embeds with the kernels:
+//   LAMINA_FN              before every kernel function: empty (`inline` in C++)
+//   LAMINA_OUT(T)          an output parameter: `out T` (`T&`)
+//   LAMINA_IN(T)           a struct parameter read only: `T` (`const T&`)
+//   LAMINA_IN_ARRAY(T)     an array parameter read only: `T` (`const T`, so `T name[N]` decays to
+//                          a pointer to const)
+//   LAMINA_OUT_ARRAY(T)    an array parameter written: `out T` (`T`)
+// and LAMINA_STACK, the length of the arrays the stack composition (stack.glsl) works on: the
+// number of stack entries of the largest material in a GLSL module, defined by the back end before
+// the kernels (128 in C++, kMaxStackEntries).
 #ifndef LAMINA_FN
 #define LAMINA_FN
+#define LAMINA_OUT(T) out T
+#define LAMINA_IN(T) T
+#define LAMINA_IN_ARRAY(T) T
+#define LAMINA_OUT_ARRAY(T) out T
 #endif
 
 const float LAMINA_PI = 3.14159265358979f;

@@ -4,12 +4,16 @@
 // common.glsl states the frame: z is the normal, wi and wo point away from the surface, BRDFs
 // exclude the cosine, directions below the horizon give 0 and nothing returns NaN or inf.
 //
-// Macros the .glsl files rely on; both are #undef'd at the end of this header:
-//   LAMINA_FN      written before every kernel function. Here `inline` (the functions live in a
-//                  header); the GLSL prelude defines it empty.
-//   LAMINA_OUT(T)  an output parameter of type T. Here `T&`; in GLSL `out T`.
-// The GLSL prelude is `#define LAMINA_OUT(T) out T` and `#define LAMINA_FN` (plus
-// `precision highp float;` for ES), followed by the files in the order included below.
+// The macros the .glsl files are written with (common.glsl lists them with their GLSL meaning) are
+// defined here for C++ and #undef'd at the end of this header:
+//   LAMINA_FN             inline (the functions live in a header)
+//   LAMINA_OUT(T)         T&
+//   LAMINA_IN(T)          const T&
+//   LAMINA_IN_ARRAY(T)    const T (an array parameter `const T name[N]` is a pointer to const)
+//   LAMINA_OUT_ARRAY(T)   T
+//   LAMINA_STACK          kMaxStackEntries (graph/limits.h), the length of the stack's arrays
+// The GLSL back end embeds the files in the order included below, after a `#define LAMINA_STACK`
+// and `precision highp float;` for ES.
 //
 // Everything lands in lamina::kernels, which also sees all of glm (`using namespace glm`), as GLSL
 // code sees its built-ins: kernels::d_ggx(c, a), kernels::vec3, kernels::LAMINA_PI.
@@ -17,8 +21,14 @@
 
 #include <glm/glm.hpp>
 
+#include "graph/limits.h"
+
 #define LAMINA_FN inline
 #define LAMINA_OUT(T) T&
+#define LAMINA_IN(T) const T&
+#define LAMINA_IN_ARRAY(T) const T
+#define LAMINA_OUT_ARRAY(T) T
+#define LAMINA_STACK lamina::kMaxStackEntries
 
 namespace lamina::kernels {
 using namespace glm;
@@ -39,3 +49,7 @@ using namespace glm;
 
 #undef LAMINA_FN
 #undef LAMINA_OUT
+#undef LAMINA_IN
+#undef LAMINA_IN_ARRAY
+#undef LAMINA_OUT_ARRAY
+#undef LAMINA_STACK

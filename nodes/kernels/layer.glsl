@@ -51,8 +51,8 @@ LAMINA_FN vec3 absorption(vec3 sigma, float thickness, float cos_l, float cos_v)
   return exp(-max(sigma * path, vec3(0.0f)));
 }
 
-// Elek 2010, eq. 4 (Weidlich and Wilkie course, eq. 3.3): t = (1 - G) + T G, where T is the
-// Fresnel transmittance on the way up and G the geometry term of the interface.
-LAMINA_FN float tir_compensation(float T, float G) { return (1.0f - G) + T * G; }
+// Elek 2010, eq. 4 (Weidlich and Wilkie course, eq. 3.3): t = (1 - G) + T G per channel, where T
+// is the Fresnel transmittance on the way up (RGB) and G the geometry term of the interface.
+LAMINA_FN vec3 tir_compensation(vec3 T, float G) { return vec3(1.0f - G) + T * G; }
 
 LAMINA_FN vec3 mirror_across_horizon(vec3 w) { return vec3(w.x, w.y, -w.z); }

@@ -25,23 +25,24 @@ LAMINA_FN float lamina_symmetric_dot(vec3 l, vec3 v, vec3 h) { return 0.5f * (do
 // at V.H (the Fresnel term `fresnel` selects: lamina_fresnel_dielectric). l_below and v_below
 // receive L' and V' (z <= 0 when either cannot refract: then nothing below contributes), carry
 // receives T_i a_i t_i with T_i = 1 - F_i, a_i the Beer-Lambert absorption (Elek eq. 3) and
-// t_i = (1 - G_i) + T_i G_i (Elek eq. 4).
+// t_i = (1 - G_i) + T_i G_i (Elek eq. 4). F_i and T_i are RGB: a dielectric's are grey, a coated
+// boundary's need not be.
 LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution, int fresnel_mode, float m,
                                      vec3 sigma, float thickness, LAMINA_OUT(vec3) l_below,
                                      LAMINA_OUT(vec3) v_below, LAMINA_OUT(vec3) carry) {
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
-  float fresnel = lamina_fresnel_dielectric(fresnel_mode, v_dot_h, eta);
+  vec3 fresnel = vec3(lamina_fresnel_dielectric(fresnel_mode, v_dot_h, eta));
   float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   l_below = refract_down(l, eta);
   v_below = refract_down(v, eta);
   carry = vec3(0.0f);
   if (l_below.z > 0.0f && v_below.z > 0.0f) {
-    float transmittance = 1.0f - fresnel;
+    vec3 transmittance = vec3(1.0f) - fresnel;
     carry = transmittance * absorption(sigma, thickness, l_below.z, v_below.z) * tir_compensation(transmittance, g);
   }
-  return torrance_sparrow(vec3(fresnel), d, g, l.z, v.z);
+  return torrance_sparrow(fresnel, d, g, l.z, v.z);
 }
 
 // A rough conductor base: Torrance-Sparrow with the conductor Fresnel term at V.H (the one
@@ -155,51 +156,355 @@ LAMINA_FN vec3 lamina_sample_diffuse_lobe(vec2 u, float n_frame) {
   return vec3(sin_theta * cos(phi), sin_theta * sin(phi), sqrt(1.0f - sin2));
 }
 
-// --- image lookups -------------------------------------------------------------------------------
+// --- the composition --------------------------------------------------------------------------------
+// lamina compiles a material's stack into an array of entries, one per stack node as reached along
+// one path from the surface (a stack both sides of a mix share appears once per side), depth first:
+// a layer before its base, a mix's first stack before its second, so a parent always comes before
+// its children. The loops below walk that array. The CPU evaluator calls them; the GLSL back end
+// emits the array as a constant and calls the same functions, whose constant loops its compilers
+// unroll. Nothing else composes a stack.
 
-// texture/image's uv transform: rotate about (0.5, 0.5) by rotation_deg, then scale, then offset.
-LAMINA_FN vec2 lamina_image_uv(vec2 uv, float rotation_deg, vec2 scale, vec2 offset) {
-  float angle = rotation_deg * LAMINA_PI / 180.0f;
-  vec2 c = uv - vec2(0.5f);
-  vec2 rotated = vec2(cos(angle) * c.x - sin(angle) * c.y, sin(angle) * c.x + cos(angle) * c.y);
-  return (rotated + vec2(0.5f)) * scale + offset;
-}
+// What an entry is.
+const int LAMINA_LAYER = 0;      // an interface over a medium over the entry `first`
+const int LAMINA_MIX = 1;        // (1 - weight) first + weight second
+const int LAMINA_SUBSTRATE = 2;  // an opaque base
 
-// i modulo period in [0, period) for i >= -2^20 (GLSL leaves % of negative operands undefined).
-LAMINA_FN int lamina_positive_mod(int i, int period) {
-  int shift = (1048576 / period + 1) * period;
-  return (i + shift) % period;
-}
+// A layer's interface model.
+const int LAMINA_INTERFACE_DIELECTRIC = 0;  // lamina_interface_eval
 
-// A texel index under a wrap mode: 0 repeat, 1 clamp to edge, 2 mirrored repeat.
-LAMINA_FN int lamina_wrap_index(int i, int size, int wrap) {
-  if (wrap == 1) return clamp(i, 0, size - 1);
-  if (wrap == 2) {
-    int j = lamina_positive_mod(i, 2 * size);
-    return j < size ? j : 2 * size - 1 - j;
+// A layer's medium model.
+const int LAMINA_MEDIUM_CLEAR = 0;
+const int LAMINA_MEDIUM_ABSORBING = 1;  // Beer-Lambert: absorption
+
+// A substrate's model.
+const int LAMINA_SUBSTRATE_LAMBERT = 0;     // lamina_lambert_eval
+const int LAMINA_SUBSTRATE_OREN_NAYAR = 1;  // oren_nayar
+const int LAMINA_SUBSTRATE_CONDUCTOR = 2;   // lamina_conductor_eval
+
+// One entry of a compiled stack: what it is, where it is. Constant for a material.
+struct LaminaEntry {
+  int kind;          // LAMINA_LAYER, LAMINA_MIX or LAMINA_SUBSTRATE
+  int model;         // a layer's interface model or a substrate's model
+  int medium;        // a layer's medium model
+  int distribution;  // a microfacet lobe's d_microfacet distribution
+  int fresnel;       // a microfacet lobe's fresnel_mode
+  int degrees;       // 1: the roughness input is an angle in degrees; 0: the slope itself
+  int parent;        // the entry above; -1 for the surface
+  int side;          // under a mix: 0 in its first stack, 1 in its second
+  int first;         // a layer's base, a mix's first stack; -1 for a substrate
+  int second;        // a mix's second stack; -1 otherwise
+};
+
+// An entry's inputs at one shading point, clamped to their declared ranges (a texture cannot push a
+// parameter outside the model's domain). What each member holds:
+//   colour0  lambert, oren_nayar: albedo; conductor: n (absolute)
+//   colour1  conductor: k (absolute)
+//   colour2  layer: the medium's absorption per micrometre
+//   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, oren_nayar's sigma;
+//            y: roughness (layer, conductor; an angle or a slope, per `degrees`);
+//            z: a layer's medium thickness in micrometres
+//   normal   the shading normal the entry's interface or substrate sees, in the local frame: the
+//            frame slot a normal input will fill; (0, 0, 1) for every entry until one does
+struct LaminaInputs {
+  vec3 colour0;
+  vec3 colour1;
+  vec3 colour2;
+  vec4 scalars;
+  vec3 normal;
+};
+
+// An entry's parameters at one shading point, with what the entries above it pass down.
+struct LaminaParams {
+  float n_above;    // absolute index of the medium above the entry (1 at the top)
+  float m_above;    // the slope the layer above passes down (Elek sec. 3), 0 at the top
+  float ior;        // layer: absolute index below its interface
+  float eta;        // layer: the relative index ior / n_above
+  float m;          // layer, conductor: the slope after Elek's clamp to the layers above
+  float thickness;  // layer
+  float weight;     // mix
+  float sigma;      // oren_nayar
+  vec3 absorption;  // layer
+  vec3 albedo;      // lambert, oren_nayar
+  vec3 n;           // conductor: the complex index relative to the medium above
+  vec3 k;
+  vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
+};
+
+// Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
+// slope to the entries below it, a mix passes on what it received. clamp_lower: Elek's rule that
+// raises each slope to at least the one above it.
+LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_STACK], bool clamp_lower,
+                                    LAMINA_OUT_ARRAY(LaminaParams) params[LAMINA_STACK]) {
+  for (int i = 0; i < count; ++i) {
+    LaminaParams p;
+    p.n_above = 1.0f;
+    p.m_above = 0.0f;
+    int parent = entries[i].parent;
+    if (parent >= 0) {
+      bool below_layer = entries[parent].kind == LAMINA_LAYER;
+      p.n_above = below_layer ? params[parent].ior : params[parent].n_above;
+      p.m_above = below_layer ? params[parent].m : params[parent].m_above;
+    }
+    p.ior = 1.0f;
+    p.eta = 1.0f;
+    p.m = 0.0f;
+    p.thickness = 0.0f;
+    p.weight = 0.0f;
+    p.sigma = 0.0f;
+    p.absorption = vec3(0.0f);
+    p.albedo = vec3(0.0f);
+    p.n = vec3(1.0f);
+    p.k = vec3(0.0f);
+    p.normal = inputs[i].normal;
+    int kind = entries[i].kind;
+    bool degrees = entries[i].degrees != 0;
+    if (kind == LAMINA_LAYER) {
+      p.ior = inputs[i].scalars.x;
+      p.eta = p.ior / p.n_above;
+      p.m = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      if (entries[i].medium == LAMINA_MEDIUM_ABSORBING) {
+        p.absorption = inputs[i].colour2;
+        p.thickness = inputs[i].scalars.z;
+      }
+    } else if (kind == LAMINA_MIX) {
+      p.weight = inputs[i].scalars.x;
+    } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
+      // The metal's index relative to the layer above it (Elek's shader uses the absolute one);
+      // n stays above 0.001, where the Fresnel equations stay finite.
+      p.n = max(inputs[i].colour0, vec3(1.0e-3f)) / p.n_above;
+      p.k = inputs[i].colour1 / p.n_above;
+      p.m = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+    } else {
+      p.albedo = inputs[i].colour0;
+      p.sigma = inputs[i].scalars.x;
+    }
+    params[i] = p;
   }
-  return lamina_positive_mod(i, size);
 }
 
-// Bilinear filtering as OpenGL's GL_LINEAR, texel centres at (i + 0.5) / size, row 0 at v = 0.
-// Sets texels to the wrapped (x0, y0, x1, y1) and returns the weights (tx, ty) of x1 and y1.
-// A non-finite uv reads texel (0, 0).
-LAMINA_FN vec2 lamina_bilinear_texels(vec2 uv, int width, int height, int wrap, LAMINA_OUT(ivec4) texels) {
-  float x = uv.x * float(width) - 0.5f;
-  float y = uv.y * float(height) - 0.5f;
-  // Not finite (NaN fails every comparison): read texel (0, 0).
-  if (!(abs(x) <= 3.0e38f) || !(abs(y) <= 3.0e38f)) {
-    texels = ivec4(0);
-    return vec2(0.0f);
+// Whether an entry is a lobe (every interface and substrate; a mix only weighs its stacks).
+LAMINA_FN bool lamina_is_lobe(LAMINA_IN(LaminaEntry) e) { return e.kind != LAMINA_MIX; }
+
+// Whether a lobe reflects by microfacets (a layer's interface, a conductor) or diffusely.
+LAMINA_FN bool lamina_is_microfacet_lobe(LAMINA_IN(LaminaEntry) e) {
+  return e.kind == LAMINA_LAYER || (e.kind == LAMINA_SUBSTRATE && e.model == LAMINA_SUBSTRATE_CONDUCTOR);
+}
+
+// A substrate's BRDF at (l, v) in its own frame.
+LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 l, vec3 v) {
+  if (e.model == LAMINA_SUBSTRATE_CONDUCTOR) return lamina_conductor_eval(l, v, p.n, p.k, e.distribution, e.fresnel, p.m);
+  if (e.model == LAMINA_SUBSTRATE_OREN_NAYAR) return oren_nayar(l, v, p.albedo, p.sigma);
+  return lamina_lambert_eval(l, v, p.albedo);
+}
+
+// Elek's Algorithm 1 generalised to any stack (course sec. 3.1, Elek eq. 2):
+//   f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i,   a mix: (1 - w) f(a) + w f(b),
+// without recursion: top down, every entry's (L, V) and what its interface passes on; bottom up,
+// every entry's f from those of its children, in the recursion's order of operations.
+LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+  if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
+  vec3 l[LAMINA_STACK];        // L and V as the entry sees them
+  vec3 v[LAMINA_STACK];
+  vec3 l_below[LAMINA_STACK];  // a layer's L' and V'
+  vec3 v_below[LAMINA_STACK];
+  vec3 carry[LAMINA_STACK];    // a layer's T a t
+  vec3 f[LAMINA_STACK];        // the entry's own lobe, then (bottom up) its whole stack
+  bool reached[LAMINA_STACK];  // L and V reach the entry
+  bool passes[LAMINA_STACK];   // a layer's L' and V' both exist
+  for (int i = 0; i < count; ++i) {
+    int parent = entries[i].parent;
+    if (parent < 0) {
+      l[i] = wi;
+      v[i] = wo;
+      reached[i] = true;
+    } else if (entries[parent].kind == LAMINA_MIX) {
+      l[i] = l[parent];
+      v[i] = v[parent];
+      reached[i] = reached[parent];
+    } else {
+      l[i] = l_below[parent];
+      v[i] = v_below[parent];
+      reached[i] = reached[parent] && passes[parent];
+    }
+    f[i] = vec3(0.0f);
+    carry[i] = vec3(0.0f);
+    l_below[i] = vec3(0.0f);
+    v_below[i] = vec3(0.0f);
+    passes[i] = false;
+    if (!reached[i]) continue;
+    if (entries[i].kind == LAMINA_LAYER) {
+      vec3 lb = vec3(0.0f);
+      vec3 vb = vec3(0.0f);
+      vec3 c = vec3(0.0f);
+      f[i] = lamina_interface_eval(l[i], v[i], params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
+                                   params[i].absorption, params[i].thickness, lb, vb, c);
+      l_below[i] = lb;
+      v_below[i] = vb;
+      carry[i] = c;
+      passes[i] = lb.z > 0.0f && vb.z > 0.0f;
+    } else if (entries[i].kind == LAMINA_SUBSTRATE) {
+      f[i] = lamina_substrate_eval(entries[i], params[i], l[i], v[i]);
+    }
   }
-  // Keep the integer part representable; repeat and mirror are periodic anyway.
-  x = clamp(x, -1.0e6f, 1.0e6f);
-  y = clamp(y, -1.0e6f, 1.0e6f);
-  float fx = floor(x);
-  float fy = floor(y);
-  int x0 = int(fx);
-  int y0 = int(fy);
-  texels = ivec4(lamina_wrap_index(x0, width, wrap), lamina_wrap_index(y0, height, wrap),
-                 lamina_wrap_index(x0 + 1, width, wrap), lamina_wrap_index(y0 + 1, height, wrap));
-  return vec2(x - fx, y - fy);
+  for (int i = count - 1; i >= 0; --i) {
+    if (entries[i].kind == LAMINA_LAYER && passes[i]) {
+      f[i] = f[i] + f[entries[i].first] * carry[i];
+    } else if (entries[i].kind == LAMINA_MIX) {
+      f[i] = mix(f[entries[i].first], f[entries[i].second], params[i].weight);
+    }
+  }
+  return max(f[0], vec3(0.0f));
+}
+
+// Lobe selection at wo (course sec. 3.2.3): each lobe's estimated share of the reflected energy:
+// the Fresnel reflectance of its interface (or its substrate's albedo) times what the layers above
+// let through twice, (1 - F)^2 and the absorption along the refracted wo (lamina_selection_step),
+// times the mix weights on its path; plus a floor of 1% of the mean, so every lobe stays
+// reachable; normalised. Per entry (0 for mixes): weight, v (wo in the entry's frame) and valid
+// (wo reaches it).
+LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wo,
+                                   LAMINA_OUT_ARRAY(float) weight[LAMINA_STACK], LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK],
+                                   LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
+  float throughput[LAMINA_STACK];
+  for (int i = 0; i < count; ++i) {
+    int parent = entries[i].parent;
+    if (parent < 0) {
+      v[i] = wo;
+      throughput[i] = 1.0f;
+      valid[i] = wo.z > 0.0f;
+    } else if (entries[parent].kind == LAMINA_MIX) {
+      float share = entries[i].side == 0 ? 1.0f - params[parent].weight : params[parent].weight;
+      v[i] = v[parent];
+      throughput[i] = throughput[parent] * share;
+      valid[i] = valid[parent];
+    } else {
+      v[i] = v[parent];
+      throughput[i] = 0.0f;
+      valid[i] = false;
+      if (valid[parent]) {
+        float factor = 0.0f;
+        vec3 below = lamina_selection_step(v[parent], params[parent].eta, entries[parent].fresnel,
+                                           params[parent].absorption, params[parent].thickness, factor);
+        if (below.z > 0.0f) {
+          v[i] = below;
+          throughput[i] = throughput[parent] * factor;
+          valid[i] = true;
+        }
+      }
+    }
+  }
+  float total = 0.0f;
+  int valid_count = 0;
+  for (int i = 0; i < count; ++i) {
+    weight[i] = 0.0f;
+    if (!lamina_is_lobe(entries[i])) continue;
+    float estimate = 0.0f;
+    if (valid[i]) {
+      ++valid_count;
+      if (entries[i].kind == LAMINA_LAYER) {
+        estimate = lamina_fresnel_dielectric(entries[i].fresnel, v[i].z, params[i].eta);
+      } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
+        estimate = lamina_luminance(
+            lamina_fresnel_conductor(entries[i].fresnel, v[i].z, params[i].n, params[i].k));
+      } else {
+        estimate = lamina_luminance(params[i].albedo);
+      }
+      estimate *= throughput[i];
+    }
+    weight[i] = estimate;
+    total += estimate;
+  }
+  if (valid_count == 0) return;
+  float floor_share = total > 0.0f ? 0.01f * total / float(valid_count) : 1.0f;
+  float sum = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    if (!lamina_is_lobe(entries[i])) continue;
+    if (valid[i]) weight[i] += floor_share;
+    sum += weight[i];
+  }
+  for (int i = 0; i < count; ++i) weight[i] /= sum;
+}
+
+// A lobe draws directions in its own frame, below the layers above it. Directions inside the
+// exit cone (sin < 1/n, n the frame's absolute index) are carried up by Snell's law, with the
+// solid-angle Jacobian; a microfacet lobe's directions outside the cone, which cannot leave the
+// stack, are spread over the outer hemisphere by cos_out = cos_in / cos_critical (Jacobian
+// cos_critical), so every lobe's density integrates to exactly 1. Diffuse lobes draw cosine-
+// weighted directions inside the cone only, which is the cosine distribution outside.
+// The density of wi under the selection (weight, v, valid) at wo.
+LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(float) weight[LAMINA_STACK], LAMINA_IN_ARRAY(vec3) v[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(bool) valid[LAMINA_STACK], vec3 wi, vec3 wo) {
+  if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
+  // wi refracted down to every entry, with d omega_below / d omega_outside along the way.
+  vec3 w[LAMINA_STACK];
+  float jacobian[LAMINA_STACK];
+  for (int i = 0; i < count; ++i) {
+    int parent = entries[i].parent;
+    if (parent < 0) {
+      w[i] = wi;
+      jacobian[i] = 1.0f;
+    } else if (entries[parent].kind == LAMINA_MIX) {
+      w[i] = w[parent];
+      jacobian[i] = jacobian[parent];
+    } else {
+      float eta = params[parent].eta;
+      vec3 below = refract_down(w[parent], eta);
+      jacobian[i] = jacobian[parent] * refraction_jacobian(w[parent].z, below.z, eta);
+      w[i] = below;
+    }
+  }
+  float pdf = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    if (!lamina_is_lobe(entries[i]) || weight[i] <= 0.0f || !valid[i] || w[i].z <= 0.0f) continue;
+    float density = lamina_is_microfacet_lobe(entries[i])
+                        ? lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w[i], jacobian[i],
+                                                     wi, params[i].n_above)
+                        : lamina_diffuse_lobe_pdf(w[i], jacobian[i], params[i].n_above);
+    pdf += weight[i] * density;
+  }
+  return pdf;
+}
+
+// The entry whose lobe u_lobe picks by the selection weights; -1 if none can be drawn.
+LAMINA_FN int lamina_stack_choose(int count, LAMINA_IN_ARRAY(float) weight[LAMINA_STACK], float u_lobe) {
+  int chosen = -1;
+  float cumulative = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    if (weight[i] <= 0.0f) continue;
+    chosen = i;
+    cumulative += weight[i];
+    if (u_lobe < cumulative) break;
+  }
+  return chosen;
+}
+
+// A direction drawn from the lobe of entry `chosen` (of the selection whose v is given) with u,
+// carried up to the outside through the layers above it (refract_up, bottom to top); vec3(0) if
+// none could be drawn or it cannot leave.
+LAMINA_FN vec3 lamina_stack_sample(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK],
+                                   LAMINA_IN_ARRAY(vec3) v[LAMINA_STACK], int chosen, vec2 u) {
+  if (chosen < 0) return vec3(0.0f);
+  bool inside_cone = true;
+  vec3 w = vec3(0.0f);
+  if (lamina_is_microfacet_lobe(entries[chosen])) {
+    w = lamina_sample_microfacet_lobe(entries[chosen].distribution, params[chosen].m, v[chosen], u,
+                                      params[chosen].n_above, inside_cone);
+  } else {
+    w = lamina_sample_diffuse_lobe(u, params[chosen].n_above);
+  }
+  if (w.z <= 0.0f) return vec3(0.0f);
+  if (inside_cone) {
+    for (int i = entries[chosen].parent; i >= 0; i = entries[i].parent) {
+      if (entries[i].kind != LAMINA_LAYER) continue;
+      w = refract_up(w, params[i].eta);
+      if (w.z <= 0.0f) return vec3(0.0f);
+    }
+  }
+  return normalize(w);
 }

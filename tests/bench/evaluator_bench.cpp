@@ -68,7 +68,7 @@ void eval_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) {
   const Queries& q = queries();
   std::vector<glm::vec3> f(kQueries);
   for (auto _ : state) {
-    e.eval(q.wi, q.wo, {}, f);
+    e.eval({}, q.wi, q.wo, f);
     benchmark::DoNotOptimize(f.data());
   }
   state.SetItemsProcessed(state.iterations() * int64_t(kQueries));
@@ -78,7 +78,7 @@ void eval_pdf_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) 
   const Queries& q = queries();
   std::vector<lamina::cpu::EvalPdf> out(kQueries);
   for (auto _ : state) {
-    e.eval_pdf(q.wi, q.wo, {}, out);
+    e.eval_pdf({}, q.wi, q.wo, out);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * int64_t(kQueries));

@@ -2,8 +2,6 @@
 // every sampler the module declares, and the uniform block when parameters are uniforms.
 #pragma once
 
-#include <variant>
-
 #include "glsl/gl_runner.h"
 #include "graph/cpu/image.h"
 #include "graph/glsl/generator.h"
@@ -15,8 +13,8 @@ inline void bind_material(gltest::Pass& pass, const Program& program, const glsl
                           bool uniforms) {
   for (const glsl::SamplerBinding& b : mi.samplers)
     for (const TextureOp& op : program.ops)
-      if (const auto* img = std::get_if<ImageOp>(&op); img && img->node == b.node)
-        pass.textures.push_back({b.name, img->image->width, img->image->height, img->image->texels});
+      if (op.image && op.node == b.node)
+        pass.textures.push_back({b.name, op.image->width, op.image->height, op.image->texels});
   if (uniforms) {
     pass.uniform_block_name = mi.block;
     pass.uniform_block_data = glsl::pack_uniforms(mi);

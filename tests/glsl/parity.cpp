@@ -160,16 +160,18 @@ bool perturb(std::string& source, const std::string& prefix, Perturbation kind) 
   switch (kind) {
     case Perturbation::None: return true;
     case Perturbation::EvalScale:
-      return change("  return " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n",
-                    "  return 1.01f * " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n");
+      return change(
+          "  return lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
+          "  return 1.01f * lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//");
     case Perturbation::EvalNan:  // a quiet NaN that depends on the query, so that no compiler folds it
-      return change("  return " + prefix + "_eval_p(" + prefix + "_resolve(uv), wi, wo);\n",
-                    "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + prefix + "_eval_p(" + prefix +
-                        "_resolve(uv), wi, wo);\n");
+      return change(
+          "  return lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
+          "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * lamina_stack_eval(" + prefix + "_count, " +
+              prefix + "_entries, params, wi, wo);\n}\n\n//");
     case Perturbation::KernelConstant:
       return change("const float LAMINA_INV_PI = 0.318309886183791f;", "const float LAMINA_INV_PI = 0.32f;");
     case Perturbation::SampleDirection:
-      return change("  wi = normalize(d);\n", "  wi = normalize(d + vec3(1.0e-3f, 0.0f, 0.0f));\n");
+      return change("  wi = d;\n", "  wi = normalize(d + vec3(1.0e-3f, 0.0f, 0.0f));\n");
   }
   return false;
 }

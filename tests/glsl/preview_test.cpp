@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "glsl/gl_runner.h"

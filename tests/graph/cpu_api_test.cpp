@@ -12,6 +12,7 @@
 
 #include "cpu_test_support.h"
 #include "graph/cpu/frame.h"
+#include "nodes/kernels/kernels.h"
 #include "test_support.h"
 
 using namespace lamina;
@@ -50,7 +51,14 @@ struct Queries {
   std::vector<vec3> wi, wo;
   std::vector<vec2> uv, u;
   std::vector<float> u_lobe;
+  std::vector<ShadingContext> ctx;  // at_uv(uv[i])
 };
+
+ShadingContext at_uv(vec2 uv) {
+  ShadingContext ctx;
+  ctx.uv = uv;
+  return ctx;
+}
 
 // Directions above and below the horizon; uvs in runs of equal values and changing every query,
 // so that the batch forms' reuse of a resolved shading point is exercised both ways.
@@ -63,16 +71,11 @@ Queries make_queries(size_t count) {
     q.wo.push_back(d.direction(-0.1f));
     if (i % 7 == 0) run_uv = d.uv();
     q.uv.push_back(i < count / 2 ? run_uv : d.uv());
+    q.ctx.push_back(at_uv(q.uv.back()));
     q.u.push_back(vec2(d.uniform(), d.uniform()));
     q.u_lobe.push_back(d.uniform());
   }
   return q;
-}
-
-ShadingContext at_uv(vec2 uv) {
-  ShadingContext ctx;
-  ctx.uv = uv;
-  return ctx;
 }
 
 bool same(const cpu::Sample& a, const cpu::Sample& b) {
@@ -168,10 +171,10 @@ TEST_CASE("the batch forms give bit for bit the single-query results, textured m
     std::vector<float> pdf(n);
     std::vector<cpu::EvalPdf> both(n);
     std::vector<cpu::Sample> samples(n);
-    e.eval(q.wi, q.wo, q.uv, f);
-    e.pdf(q.wi, q.wo, q.uv, pdf);
-    e.eval_pdf(q.wi, q.wo, q.uv, both);
-    e.sample(q.wo, q.u, q.u_lobe, q.uv, samples);
+    e.eval(q.ctx, q.wi, q.wo, f);
+    e.pdf(q.ctx, q.wi, q.wo, pdf);
+    e.eval_pdf(q.ctx, q.wi, q.wo, both);
+    e.sample(q.ctx, q.wo, q.u, q.u_lobe, samples);
     long differs = 0;
     for (size_t i = 0; i < n; ++i) {
       ShadingContext ctx = at_uv(q.uv[i]);
@@ -183,19 +186,20 @@ TEST_CASE("the batch forms give bit for bit the single-query results, textured m
         ++differs;
     }
     CHECK(differs == 0);
-    // Without uvs every query is at uv = 0.
+    // Without contexts every query is at the default context.
     std::vector<vec3> f0(n);
-    e.eval(q.wi, q.wo, {}, f0);
+    e.eval({}, q.wi, q.wo, f0);
     long differs0 = 0;
     for (size_t i = 0; i < n; ++i) differs0 += f0[i] != e.eval(ShadingContext{}, q.wi[i], q.wo[i]) ? 1 : 0;
     CHECK(differs0 == 0);
   }
 }
 
-TEST_CASE("the batch forms reject spans of different lengths and accept empty uv and empty batches") {
+TEST_CASE("the batch forms reject spans of different lengths and accept empty contexts and empty batches") {
   cpu::Evaluator e = test::load_evaluator(test::source_dir() / "examples/materials/car_paint.json");
   std::vector<vec3> three(3, vec3(0.0f, 0.0f, 1.0f)), four(4, vec3(0.0f, 0.0f, 1.0f));
-  std::vector<vec2> uv2(2), u3(3);
+  std::vector<vec2> u2(2), u3(3);
+  std::vector<ShadingContext> ctx2(2);
   std::vector<float> lobe3(3), pdf3(3);
   std::vector<cpu::EvalPdf> both3(3);
   std::vector<cpu::Sample> samples3(3);
@@ -207,18 +211,18 @@ TEST_CASE("the batch forms reject spans of different lengths and accept empty uv
     }
     return std::string("(no exception)");
   };
-  std::string m = message([&] { e.eval(three, four, {}, three); });
-  CHECK(m.find("Evaluator::eval: spans of different lengths: f 3, wi 3, wo 4, uv 0") != std::string::npos);
-  m = message([&] { e.pdf(three, three, uv2, pdf3); });
-  CHECK(m.find("Evaluator::pdf: spans of different lengths: pdf 3, wi 3, wo 3, uv 2") != std::string::npos);
-  CHECK(m.find("uv may also be empty") != std::string::npos);
-  m = message([&] { e.eval_pdf(four, three, {}, both3); });
+  std::string m = message([&] { e.eval({}, three, four, three); });
+  CHECK(m.find("Evaluator::eval: spans of different lengths: f 3, wi 3, wo 4, ctx 0") != std::string::npos);
+  m = message([&] { e.pdf(ctx2, three, three, pdf3); });
+  CHECK(m.find("Evaluator::pdf: spans of different lengths: pdf 3, wi 3, wo 3, ctx 2") != std::string::npos);
+  CHECK(m.find("ctx may also be empty") != std::string::npos);
+  m = message([&] { e.eval_pdf({}, four, three, both3); });
   CHECK(m.find("Evaluator::eval_pdf: spans of different lengths: out 3, wi 4, wo 3") != std::string::npos);
-  m = message([&] { e.sample(three, uv2, lobe3, {}, samples3); });
+  m = message([&] { e.sample({}, three, u2, lobe3, samples3); });
   CHECK(m.find("Evaluator::sample: spans of different lengths: out 3, wo 3, u 2, u_lobe 3") != std::string::npos);
   // Right lengths: no exception; nothing at all is fine too.
-  CHECK_NOTHROW(e.eval(three, three, u3, three));
-  CHECK_NOTHROW(e.sample(three, u3, lobe3, {}, samples3));
+  CHECK_NOTHROW(e.eval({}, three, three, three));
+  CHECK_NOTHROW(e.sample({}, three, u3, lobe3, samples3));
   CHECK_NOTHROW(e.eval_pdf({}, {}, {}, std::span<cpu::EvalPdf>()));
 }
 
@@ -242,7 +246,7 @@ TEST_CASE("many threads on one Evaluator at once give bit for bit the serial res
     }
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = e.albedo(at_uv(q.uv[i]), glm::abs(q.wo[i]), 64);
     std::vector<vec3> batch_f(n);
-    e.eval(q.wi, q.wo, q.uv, batch_f);
+    e.eval(q.ctx, q.wi, q.wo, batch_f);
     // Each thread runs every query, starting at a different offset, with scalar and batch forms
     // interleaved; it counts its own mismatches (no doctest assertions off the main thread).
     std::vector<long> mismatches(threads, 0);
@@ -261,7 +265,7 @@ TEST_CASE("many threads on one Evaluator at once give bit for bit the serial res
           if (i < albedo.size() && e.albedo(at_uv(q.uv[i]), glm::abs(q.wo[i]), 64) != albedo[i]) ++bad;
         }
         std::vector<vec3> mine(n);
-        e.eval(q.wi, q.wo, q.uv, mine);
+        e.eval(q.ctx, q.wi, q.wo, mine);
         for (size_t i = 0; i < n; ++i) bad += mine[i] != batch_f[i] ? 1 : 0;
         mismatches[size_t(t)] = bad;
       });
@@ -313,22 +317,23 @@ TEST_CASE("compile reads each microfacet node's fresnel parameter into the progr
   CheckedFile checked = check_file(test::source_dir() / "tests/data/glsl/fresnel_modes.json");
   REQUIRE(checked.ok());
   Program p = compile(*checked.graphs[0], "fresnel_modes.json");
-  std::vector<Fresnel> interfaces;
-  Fresnel conductor = Fresnel::Exact;
-  for (const StackNode& node : p.stack) {
-    if (const auto* layer = std::get_if<LayerNode>(&node))
-      interfaces.push_back(std::get<DielectricInterface>(layer->interface).fresnel);
-    if (const auto* c = std::get_if<ConductorNode>(&node)) conductor = c->fresnel;
+  // Fresnel codes of nodes/kernels/fresnel.glsl: 0 exact, 1 Schlick, 2 Lazanyi-Szirmay-Kalos.
+  namespace k = kernels;
+  auto conductor_of = [](const StackEntry& e) {
+    return e.kind == k::LAMINA_SUBSTRATE && e.model == k::LAMINA_SUBSTRATE_CONDUCTOR;
+  };
+  std::vector<int> interfaces;
+  int conductor = 0;
+  for (const StackEntry& e : p.stack) {
+    if (e.kind == k::LAMINA_LAYER) interfaces.push_back(e.fresnel);
+    if (conductor_of(e)) conductor = e.fresnel;
   }
-  // Bottom up: the Schlick interface into index 1.4 first, then the Lazanyi coat.
-  CHECK(interfaces == std::vector<Fresnel>{Fresnel::Schlick, Fresnel::Lazanyi});
-  CHECK(conductor == Fresnel::Schlick);
+  // From the surface down: the Lazanyi coat, then the Schlick interface into index 1.4.
+  CHECK(interfaces == std::vector<int>{2, 1});
+  CHECK(conductor == 1);
   Program car = compile(*check_file(test::source_dir() / "examples/materials/car_paint.json").graphs[0], "car.json");
-  for (const StackNode& node : car.stack) {
-    if (const auto* layer = std::get_if<LayerNode>(&node))
-      CHECK(std::get<DielectricInterface>(layer->interface).fresnel == Fresnel::Exact);
-    if (const auto* c = std::get_if<ConductorNode>(&node)) CHECK(c->fresnel == Fresnel::Exact);
-  }
+  for (const StackEntry& e : car.stack)
+    if (e.kind == k::LAMINA_LAYER || conductor_of(e)) CHECK(e.fresnel == 0);
   // The modes change the BRDF: the same stack with exact terms everywhere differs.
   cpu::Evaluator approximate(std::move(p));
   std::string text = test::read_file(test::source_dir() / "tests/data/glsl/fresnel_modes.json");

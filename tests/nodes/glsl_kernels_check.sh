@@ -50,7 +50,8 @@ void main() {
   f += pdf_cosine(c);
   // layer
   s += refract_down(w, 1.5f) + refract_up(v, 1.5f) + mirror_across_horizon(w);
-  f += refraction_jacobian(c, w.z, 1.5f) + tir_compensation(0.96f, 0.8f);
+  f += refraction_jacobian(c, w.z, 1.5f);
+  s += tir_compensation(vec3(0.96f), 0.8f);
   s += absorption(vec3(0.6f, 1.0f, 1.0f), 0.5f, c, w.z);
   // texture
   f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
@@ -84,6 +85,39 @@ void main() {
   f += float(lamina_positive_mod(-3, 4) + lamina_wrap_index(-2, 8, 2));
   s.xy += lamina_bilinear_texels(v_uv, 16, 8, 0, texels) + vec2(texels.xy);
   if (inside) f += 1.0f;
+  // the composition: a layer over a mix of a conductor and a Lambert base
+  LaminaContext ctx = lamina_context(v_uv);
+  s.xy += ctx.uv;
+  LaminaEntry entries[LAMINA_STACK];
+  LaminaInputs inputs[LAMINA_STACK];
+  for (int i = 0; i < LAMINA_STACK; ++i) {
+    entries[i].kind = i == 0 ? LAMINA_LAYER : i == 1 ? LAMINA_MIX : LAMINA_SUBSTRATE;
+    entries[i].model = i == 2 ? LAMINA_SUBSTRATE_CONDUCTOR : LAMINA_SUBSTRATE_LAMBERT;
+    entries[i].medium = LAMINA_MEDIUM_ABSORBING;
+    entries[i].distribution = 0;
+    entries[i].fresnel = 0;
+    entries[i].degrees = 1;
+    entries[i].parent = i == 0 ? -1 : i == 1 ? 0 : 1;
+    entries[i].side = i == 3 ? 1 : 0;
+    entries[i].first = i == 0 ? 1 : i == 1 ? 2 : -1;
+    entries[i].second = i == 1 ? 3 : -1;
+    inputs[i].colour0 = vec3(0.5f);
+    inputs[i].colour1 = vec3(3.0f);
+    inputs[i].colour2 = vec3(0.1f);
+    inputs[i].scalars = vec4(1.5f, 10.0f, 0.5f, 0.0f);
+    inputs[i].normal = vec3(0.0f, 0.0f, 1.0f);
+  }
+  LaminaParams params[LAMINA_STACK];
+  lamina_stack_resolve(LAMINA_STACK, entries, inputs, true, params);
+  float weight[LAMINA_STACK];
+  vec3 sv[LAMINA_STACK];
+  bool valid[LAMINA_STACK];
+  lamina_stack_select(LAMINA_STACK, entries, params, v, weight, sv, valid);
+  int chosen = lamina_stack_choose(LAMINA_STACK, weight, c);
+  s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(entries, params, sv, chosen, v_uv);
+  s += lamina_substrate_eval(entries[2], params[2], w, v);
+  f += lamina_stack_pdf(LAMINA_STACK, entries, params, weight, sv, valid, w, v);
+  if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
 }
 GLSL
@@ -98,8 +132,9 @@ for target in 330 450 es300; do
       450) echo "#version 450 core" ;;
       es300) printf '%s\n' "#version 300 es" "precision highp float;" "precision highp int;" ;;
     esac
-    echo "#define LAMINA_OUT(T) out T"
-    echo "#define LAMINA_FN"
+    # The one macro the back end defines: the length of the stack's arrays (common.glsl defines
+    # the others).
+    echo "#define LAMINA_STACK 4"
     # The files in the order kernels.h includes them, the one list of kernel files.
     for f in $(sed -n 's|^#include "nodes/kernels/\(.*\.glsl\)"$|\1|p' "$kernels/kernels.h"); do
       cat "$kernels/$f"

@@ -557,11 +557,14 @@ TEST_CASE("kernels: absorption is Bouguer-Lambert-Beer along both refracted path
   CHECK(k::absorption(vec3(5.0f), 0.0f, 1.0e-30f, 0.3f) == vec3(1.0f));
 }
 
-TEST_CASE("kernels: tir_compensation is Elek's eq. 4 and mirror_across_horizon flips z") {
-  // (1 - 0.8) + 0.96 * 0.8 = 0.968
-  CHECK(double(k::tir_compensation(0.96f, 0.8f)) == rel(0.968));
-  CHECK(k::tir_compensation(0.5f, 0.0f) == 1.0f);
-  CHECK(k::tir_compensation(0.5f, 1.0f) == 0.5f);
+TEST_CASE("kernels: tir_compensation is Elek's eq. 4 per channel and mirror_across_horizon flips z") {
+  // (1 - 0.8) + 0.96 * 0.8 = 0.968; (1 - 0.8) + 0.5 * 0.8 = 0.6
+  const vec3 t = k::tir_compensation(vec3(0.96f, 0.5f, 0.96f), 0.8f);
+  CHECK(double(t.x) == rel(0.968));
+  CHECK(double(t.y) == rel(0.6));
+  CHECK(t.z == t.x);
+  CHECK(k::tir_compensation(vec3(0.5f), 0.0f) == vec3(1.0f));
+  CHECK(k::tir_compensation(vec3(0.5f), 1.0f) == vec3(0.5f));
   CHECK(k::mirror_across_horizon(vec3(0.1f, -0.2f, 0.7f)) == vec3(0.1f, -0.2f, -0.7f));
 }
 
@@ -670,7 +673,7 @@ TEST_CASE("kernels: no kernel returns NaN or inf for grazing, zero or smooth-lim
     CHECK(is_finite(k::fresnel_conductor(c, vec3(0.0f), vec3(0.0f))));
     CHECK(is_finite(k::fresnel_lazanyi(c, gold_n, gold_k)));
     CHECK(is_finite(k::pdf_cosine(c)));
-    CHECK(is_finite(k::tir_compensation(c, c)));
+    CHECK(is_finite(k::tir_compensation(vec3(c), c)));
     for (float eta : etas) {
       CAPTURE(eta);
       CHECK(is_finite(k::fresnel_dielectric(c, eta)));

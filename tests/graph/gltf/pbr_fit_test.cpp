@@ -239,17 +239,16 @@ float unreachable(vec3 albedo) {
 // What a texture state of a material is made of, read from its compiled stack (never from a fit):
 // whether a conductor is reachable through the mixes at that state's weights.
 bool reaches_conductor(const Program& program, const std::vector<float>& registers, int index) {
-  const StackNode& node = program.stack[static_cast<size_t>(index)];
-  if (std::holds_alternative<ConductorNode>(node)) return true;
-  if (const auto* layer = std::get_if<LayerNode>(&node)) return reaches_conductor(program, registers, layer->base);
-  if (const auto* mix = std::get_if<MixNode>(&node)) {
-    // The evaluator clamps a linked weight to its range [0, 1]; a stack with no weight is not seen.
-    const float w = std::clamp(
-        mix->weight.slot >= 0 ? registers[static_cast<size_t>(mix->weight.slot)] : mix->weight.constant, 0.0f, 1.0f);
-    return (w < 1.0f && reaches_conductor(program, registers, mix->a)) ||
-           (w > 0.0f && reaches_conductor(program, registers, mix->b));
-  }
-  return false;  // a diffuse substrate
+  namespace k = kernels;
+  const StackEntry& e = program.stack[static_cast<size_t>(index)];
+  if (e.kind == k::LAMINA_SUBSTRATE) return e.model == k::LAMINA_SUBSTRATE_CONDUCTOR;
+  if (e.kind == k::LAMINA_LAYER) return reaches_conductor(program, registers, e.first);
+  // A mix: the evaluator clamps a linked weight to its range [0, 1]; a stack with no weight is not seen.
+  const InputRef& weight = e.scalar_x;
+  const float w =
+      std::clamp(weight.linked() ? registers[static_cast<size_t>(weight.slot)] : weight.constant.x, 0.0f, 1.0f);
+  return (w < 1.0f && reaches_conductor(program, registers, e.first)) ||
+         (w > 0.0f && reaches_conductor(program, registers, e.second));
 }
 
 // Limits by structure on the errors beyond the unreachable share, each the worst measured over the
@@ -288,7 +287,7 @@ TEST_CASE("fit_pbr fits every texture state of every bundled example within its 
     for (const auto& state : fallback.states) {
       ShadingContext ctx;
       ctx.uv = state.uv;
-      const bool conductor = reaches_conductor(program, material.texture_registers(ctx), program.root);
+      const bool conductor = reaches_conductor(program, material.texture_registers(ctx), 0);
       const gltf::FitResult& fit = state.fit;
       const PbrParams& p = fit.params;
       const vec3 normal(0.0f, 0.0f, 1.0f), grazing(std::sin(1.3962634f), 0.0f, std::cos(1.3962634f));
