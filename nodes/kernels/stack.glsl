@@ -300,58 +300,49 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
 
 // Elek's Algorithm 1 generalised to any stack (course sec. 3.1, Elek eq. 2):
 //   f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i,   a mix: (1 - w) f(a) + w f(b),
-// without recursion: top down, every entry's (L, V) and what its interface passes on; bottom up,
-// every entry's f from those of its children, in the recursion's order of operations.
+// without recursion: top down, every entry's own lobe at the (L, V) its parent hands it and what
+// it hands on (a layer: L', V' and T a t; a mix: its own L, V); bottom up, every entry's f from
+// those of its children, in the recursion's order of operations. An entry is reached when both
+// directions it is handed point up (a layer that cannot refract hands on one that does not), and
+// an unreached entry's f and carry stay 0, so a layer adds f_i + 0 without a branch.
 LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
-  vec3 l[LAMINA_STACK];        // L and V as the entry sees them
-  vec3 v[LAMINA_STACK];
-  vec3 l_below[LAMINA_STACK];  // a layer's L' and V'
-  vec3 v_below[LAMINA_STACK];
-  vec3 carry[LAMINA_STACK];    // a layer's T a t
-  vec3 f[LAMINA_STACK];        // the entry's own lobe, then (bottom up) its whole stack
-  bool reached[LAMINA_STACK];  // L and V reach the entry
-  bool passes[LAMINA_STACK];   // a layer's L' and V' both exist
+  vec3 l_on[LAMINA_STACK];  // the L and V an entry hands to the entries below it
+  vec3 v_on[LAMINA_STACK];
+  vec3 carry[LAMINA_STACK];  // a layer's T a t
+  vec3 f[LAMINA_STACK];      // the entry's own lobe, then (bottom up) its whole stack
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
-    if (parent < 0) {
-      l[i] = wi;
-      v[i] = wo;
-      reached[i] = true;
-    } else if (entries[parent].kind == LAMINA_MIX) {
-      l[i] = l[parent];
-      v[i] = v[parent];
-      reached[i] = reached[parent];
-    } else {
-      l[i] = l_below[parent];
-      v[i] = v_below[parent];
-      reached[i] = reached[parent] && passes[parent];
-    }
+    vec3 l = parent < 0 ? wi : l_on[parent];
+    vec3 v = parent < 0 ? wo : v_on[parent];
     f[i] = vec3(0.0f);
     carry[i] = vec3(0.0f);
-    l_below[i] = vec3(0.0f);
-    v_below[i] = vec3(0.0f);
-    passes[i] = false;
-    if (!reached[i]) continue;
-    if (entries[i].kind == LAMINA_LAYER) {
+    l_on[i] = vec3(0.0f);
+    v_on[i] = vec3(0.0f);
+    if (l.z <= 0.0f || v.z <= 0.0f) continue;
+    int kind = entries[i].kind;
+    if (kind == LAMINA_LAYER) {
       vec3 lb = vec3(0.0f);
       vec3 vb = vec3(0.0f);
       vec3 c = vec3(0.0f);
-      f[i] = lamina_interface_eval(l[i], v[i], params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
+      f[i] = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
                                    params[i].absorption, params[i].thickness, lb, vb, c);
-      l_below[i] = lb;
-      v_below[i] = vb;
+      l_on[i] = lb;
+      v_on[i] = vb;
       carry[i] = c;
-      passes[i] = lb.z > 0.0f && vb.z > 0.0f;
-    } else if (entries[i].kind == LAMINA_SUBSTRATE) {
-      f[i] = lamina_substrate_eval(entries[i], params[i], l[i], v[i]);
+    } else if (kind == LAMINA_MIX) {
+      l_on[i] = l;
+      v_on[i] = v;
+    } else {
+      f[i] = lamina_substrate_eval(entries[i], params[i], l, v);
     }
   }
   for (int i = count - 1; i >= 0; --i) {
-    if (entries[i].kind == LAMINA_LAYER && passes[i]) {
+    int kind = entries[i].kind;
+    if (kind == LAMINA_LAYER) {
       f[i] = f[i] + f[entries[i].first] * carry[i];
-    } else if (entries[i].kind == LAMINA_MIX) {
+    } else if (kind == LAMINA_MIX) {
       f[i] = mix(f[entries[i].first], f[entries[i].second], params[i].weight);
     }
   }
