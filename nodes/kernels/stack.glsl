@@ -298,6 +298,14 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
   return lamina_lambert_eval(l, v, p.albedo);
 }
 
+// What one entry of lamina_stack_eval passes between its passes.
+struct LaminaEvalStep {
+  vec3 l_on;   // the L and V the entry hands to the entries below it
+  vec3 v_on;
+  vec3 carry;  // a layer's T a t
+  vec3 f;      // the entry's own lobe, then (bottom up) its whole stack
+};
+
 // Elek's Algorithm 1 generalised to any stack (course sec. 3.1, Elek eq. 2):
 //   f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i,   a mix: (1 - w) f(a) + w f(b),
 // without recursion: top down, every entry's own lobe at the (L, V) its parent hands it and what
@@ -308,45 +316,42 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
 LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
-  vec3 l_on[LAMINA_STACK];  // the L and V an entry hands to the entries below it
-  vec3 v_on[LAMINA_STACK];
-  vec3 carry[LAMINA_STACK];  // a layer's T a t
-  vec3 f[LAMINA_STACK];      // the entry's own lobe, then (bottom up) its whole stack
+  LaminaEvalStep s[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
-    vec3 l = parent < 0 ? wi : l_on[parent];
-    vec3 v = parent < 0 ? wo : v_on[parent];
-    f[i] = vec3(0.0f);
-    carry[i] = vec3(0.0f);
-    l_on[i] = vec3(0.0f);
-    v_on[i] = vec3(0.0f);
+    vec3 l = parent < 0 ? wi : s[parent].l_on;
+    vec3 v = parent < 0 ? wo : s[parent].v_on;
+    s[i].f = vec3(0.0f);
+    s[i].carry = vec3(0.0f);
+    s[i].l_on = vec3(0.0f);
+    s[i].v_on = vec3(0.0f);
     if (l.z <= 0.0f || v.z <= 0.0f) continue;
     int kind = entries[i].kind;
     if (kind == LAMINA_LAYER) {
       vec3 lb = vec3(0.0f);
       vec3 vb = vec3(0.0f);
       vec3 c = vec3(0.0f);
-      f[i] = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
-                                   params[i].absorption, params[i].thickness, lb, vb, c);
-      l_on[i] = lb;
-      v_on[i] = vb;
-      carry[i] = c;
+      s[i].f = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
+                                     params[i].absorption, params[i].thickness, lb, vb, c);
+      s[i].l_on = lb;
+      s[i].v_on = vb;
+      s[i].carry = c;
     } else if (kind == LAMINA_MIX) {
-      l_on[i] = l;
-      v_on[i] = v;
+      s[i].l_on = l;
+      s[i].v_on = v;
     } else {
-      f[i] = lamina_substrate_eval(entries[i], params[i], l, v);
+      s[i].f = lamina_substrate_eval(entries[i], params[i], l, v);
     }
   }
   for (int i = count - 1; i >= 0; --i) {
     int kind = entries[i].kind;
     if (kind == LAMINA_LAYER) {
-      f[i] = f[i] + f[entries[i].first] * carry[i];
+      s[i].f = s[i].f + s[entries[i].first].f * s[i].carry;
     } else if (kind == LAMINA_MIX) {
-      f[i] = mix(f[entries[i].first], f[entries[i].second], params[i].weight);
+      s[i].f = mix(s[entries[i].first].f, s[entries[i].second].f, params[i].weight);
     }
   }
-  return max(f[0], vec3(0.0f));
+  return max(s[0].f, vec3(0.0f));
 }
 
 // Lobe selection at wo (course sec. 3.2.3): each lobe's estimated share of the reflected energy:

@@ -3,7 +3,12 @@
 // with grazing directions, and compares eval, pdf and sample with the CPU evaluator.
 //
 //   lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms]
-//                      [--perturb eval_scale|eval_nan|kernel_constant|sample_direction] FILE...
+//                      [--perturb eval_scale|eval_nan|kernel_constant|sample_direction]
+//                      [--random N [--seed S]] [FILE...]
+//
+// --random N adds N random valid materials (tests/random_stacks.h, seed S, default 1): nested
+// layers and mixes over every substrate with every distribution and Fresnel term, some parameters
+// textured, so that the composition is compared on stacks nobody wrote by hand.
 //
 // Tolerances (issue 4): eval and pdf within 1e-3 relative with an absolute floor of 1e-5, i.e.
 // |gpu - cpu| <= max(1e-3 |cpu|, 1e-5); sampled directions within 1e-4 per component for the same
@@ -23,7 +28,9 @@
 // sample_direction: sampled directions tilted by about 1e-3, breaks the sample direction).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -33,6 +40,7 @@
 
 #include "glsl/gl_runner.h"
 #include "glsl/material_pass.h"
+#include "random_stacks.h"
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
@@ -295,6 +303,8 @@ int main(int argc, char** argv) {
   std::string targets = "330,450,es300", modes = "inline,uniforms";
   Perturbation perturbation = Perturbation::None;
   bool usage_error = false;
+  int random_count = 0;
+  uint32_t random_seed = 1;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     bool has_value = i + 1 < argc;
@@ -310,6 +320,11 @@ int main(int argc, char** argv) {
                      : kind == "sample_direction" ? Perturbation::SampleDirection
                                                   : Perturbation::None;
       usage_error = usage_error || perturbation == Perturbation::None;
+    } else if (a == "--random" && has_value) {
+      random_count = std::atoi(argv[++i]);
+      usage_error = usage_error || random_count <= 0;
+    } else if (a == "--seed" && has_value) {
+      random_seed = uint32_t(std::strtoul(argv[++i], nullptr, 10));
     } else if (a.rfind("--", 0) == 0) {
       usage_error = true;
     } else {
@@ -329,10 +344,11 @@ int main(int argc, char** argv) {
       runs.push_back({target, m == "uniforms"});
     }
   }
-  if (usage_error || files.empty()) {
+  if (usage_error || (files.empty() && random_count == 0)) {
     std::fprintf(stderr,
                  "usage: lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] "
-                 "[--perturb eval_scale|eval_nan|kernel_constant|sample_direction] FILE...\n");
+                 "[--perturb eval_scale|eval_nan|kernel_constant|sample_direction] [--random N [--seed S]] "
+                 "[FILE...]\n");
     return 2;
   }
 
@@ -367,6 +383,18 @@ int main(int argc, char** argv) {
       continue;
     }
     for (size_t m = 0; m < checked.graphs.size(); ++m) programs.push_back(compile(*checked.graphs[m], file));
+  }
+  if (random_count > 0) {
+    const std::string name = "random stacks (seed " + std::to_string(random_seed) + ")";
+    const std::string text = test::RandomStacks(random_seed).file(random_count);
+    CheckedFile checked = check_text(text, name);
+    for (const Diagnostic& d : checked.diagnostics.errors()) std::printf("generator bug: %s\n", format(d).c_str());
+    if (checked.ok()) {
+      for (size_t m = 0; m < checked.graphs.size(); ++m) programs.push_back(compile(*checked.graphs[m], name));
+    } else {
+      std::printf("FAIL %s: the checker refused a generated file:\n%s\n", name.c_str(), text.c_str());
+      ok = false;
+    }
   }
 
   int passed = 0, total = 0;
