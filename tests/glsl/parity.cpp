@@ -40,13 +40,13 @@
 
 #include "glsl/gl_runner.h"
 #include "glsl/material_pass.h"
-#include "random_stacks.h"
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
 #include "graph/glsl/generator.h"
 #include "graph/glsl/glsl_text.h"
 #include "graph/load.h"
+#include "random_stacks.h"
 
 using glm::vec2;
 using glm::vec3;
