@@ -50,7 +50,8 @@ inline constexpr float kSpecularSlope = 1.0e-3f;
 class Evaluator;
 struct Local;  // the local-frame queries on one point's parameters (evaluator.cpp)
 
-// A material bound to one shading context. Cheap to copy; valid while its Evaluator lives.
+// A material bound to one shading context, valid while its Evaluator lives. It holds its texture
+// registers and parameters inline (about 13 KB, no allocation): bind once per hit, pass by reference.
 class ShadingPoint {
  public:
   // Directions in the space of the context's normal and tangent (world space for a renderer; the
