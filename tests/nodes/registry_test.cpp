@@ -22,8 +22,10 @@ TEST_CASE("the node types this release promises are all registered") {
                                     "texture/image",
                                     "texture/checker",
                                     "math/remap"};
+  // A promise is kept while its types stay; new types join without editing this list.
   auto names = NodeRegistry::builtin().type_names();
-  CHECK(std::set<std::string>(names.begin(), names.end()) == expected);
+  const std::set<std::string> registered(names.begin(), names.end());
+  for (const std::string& type : expected) CHECK_MESSAGE(registered.count(type) == 1, type << " is not registered");
 }
 
 TEST_CASE("every declaration is complete and its defaults obey its own ranges") {
