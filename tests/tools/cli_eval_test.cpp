@@ -3,9 +3,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
@@ -151,6 +153,33 @@ TEST_CASE("lamina plot writes the same PNG of the requested size every time and 
   auto image = load_image_file(first, false);
   CHECK(image->width == 800);
   CHECK(image->height == 400);
+  // It is a picture, not a blank canvas. The figure's layout (tools/plot_figure.cpp): at 800 x 400
+  // the slices fill a 2 x 2 grid left of x = 480 below y = 46; the sphere, 300 px wide, is centred
+  // in the panel right of x = 480.
+  auto pixel = [&](int x, int y) { return image->texels[size_t(y) * size_t(image->width) + size_t(x)]; };
+  auto grey = [](glm::vec4 c) { return (c.x + c.y + c.z) / 3.0f; };
+  const glm::vec4 panel = pixel(795, 60);  // the sphere panel's background, beside the sphere
+  float lo = 1.0f, hi = 0.0f;
+  int disk = 0, unlike_panel = 0;
+  for (int y = 223 - 100; y <= 223 + 100; ++y)
+    for (int x = 640 - 100; x <= 640 + 100; ++x) {
+      if ((x - 640) * (x - 640) + (y - 223) * (y - 223) > 100 * 100) continue;
+      ++disk;
+      const glm::vec4 c = pixel(x, y);
+      lo = std::min(lo, grey(c));
+      hi = std::max(hi, grey(c));
+      if (glm::length(glm::vec3(c) - glm::vec3(panel)) > 0.02f) ++unlike_panel;
+    }
+  CHECK(unlike_panel == disk);  // the sphere covers its inner two thirds
+  CHECK(hi - lo > 0.1f);        // and is shaded, not flat
+  for (int cell = 0; cell < 4; ++cell) {
+    CAPTURE(cell);
+    const int x0 = (cell % 2) * 240, y0 = 46 + (cell / 2) * 177;
+    std::set<std::array<float, 3>> colours;
+    for (int y = y0; y < y0 + 177; ++y)
+      for (int x = x0; x < x0 + 240; ++x) colours.insert({pixel(x, y).x, pixel(x, y).y, pixel(x, y).z});
+    CHECK(colours.size() > 20);  // background, grid, axes, labels and the curves' colours
+  }
   REQUIRE(test::run_cli(args + quoted(second)).exit_code == 0);
   CHECK(test::read_file(first) == test::read_file(second));
   CHECK(test::listing(dir.path()) ==
