@@ -45,6 +45,17 @@ LAMINA_FN float remap_value(float v, float in_min, float in_max, float out_min, 
   return clamp(out_min + t * (out_max - out_min), -LAMINA_MAX_VALUE, LAMINA_MAX_VALUE);
 }
 
+// Hermite smoothstep of v between edge0 and edge1: t = clamp((v - edge0) / (edge1 - edge0), 0, 1),
+// t^2 (3 - 2 t) (the GLSL built-in's formula, written out because GLSL leaves edge0 >= edge1
+// undefined). Reversed edges give the falling curve of the same formula; equal edges give the step
+// v >= edge0. Inputs of magnitude up to LAMINA_MAX_VALUE give no NaN: only 0 / 0 could, and equal
+// edges never divide.
+LAMINA_FN float smoothstep_value(float v, float edge0, float edge1) {
+  float span = edge1 - edge0;
+  float t = span != 0.0f ? clamp((v - edge0) / span, 0.0f, 1.0f) : (v >= edge0 ? 1.0f : 0.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
 // The sRGB EOTF per channel (IEC 61966-2-1:1999, sec. 5.2): c / 12.92 for c <= 0.04045, else
 // ((c + 0.055) / 1.055)^2.4. The power's base is clamped at 0 so that negative inputs, which take
 // the linear branch, never reach pow with a negative base.

@@ -352,6 +352,7 @@ TEST_CASE("glsl: a module holds the kernels its stack needs, and a texture kerne
           {"lamina_interface_eval", has_layer, false},
           {"checker_value", has_op("texture/checker"), true},
           {"remap_value", has_op("math/remap"), true},
+          {"smoothstep_value", has_op("math/smoothstep"), true},
           {"lamina_bilinear_texels", has_op("texture/image"), true},
           {"srgb_to_linear", false, true},    // images are decoded on the host
           {"srgb_from_linear", false, true},  // only the sphere shader encodes for display
@@ -369,7 +370,7 @@ TEST_CASE("glsl: a module holds the kernels its stack needs, and a texture kerne
   // Car paint has no texture, so no texture kernel occurs at all.
   Compiled car = compile_file(test::source_dir() / "examples/materials/car_paint.json");
   const std::string car_source = generate(car.programs, glsl::Target::Glsl330, false);
-  for (const char* function : {"checker_value", "remap_value", "lamina_bilinear_texels"})
+  for (const char* function : {"checker_value", "remap_value", "smoothstep_value", "lamina_bilinear_texels"})
     CHECK(car_source.find(function) == std::string::npos);
 }
 
