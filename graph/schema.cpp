@@ -266,4 +266,24 @@ std::string node_reference_markdown(const NodeRegistry& registry) {
   return out;
 }
 
+std::string node_table_markdown(const NodeRegistry& registry) {
+  std::string out = "| type | what it is |\n|---|---|\n";
+  for (const auto& d : registry.all()) {
+    out += "| `" + d.type + "` | " + d.doc;
+    for (size_t i = 0; i < d.params.size(); ++i) {
+      const ParamDecl& p = d.params[i];
+      out += std::string(i ? ", " : "; parameters ") + "`" + p.name + "`";
+      if (!p.choices.empty()) {
+        out += " (";
+        for (size_t c = 0; c < p.choices.size(); ++c) out += (c ? ", " : "") + p.choices[c];
+        out += ")";
+      }
+    }
+    for (size_t i = 0; i < d.outputs.size(); ++i)
+      out += std::string(i ? ", " : "; outputs ") + "`" + d.outputs[i].name + "`";
+    out += " |\n";
+  }
+  return out;
+}
+
 }  // namespace lamina

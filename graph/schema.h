@@ -12,6 +12,9 @@ std::string material_schema(const NodeRegistry& registry = NodeRegistry::builtin
 // The JSON Schema of scene files, from the scene field declarations (graph/scene/scene_fields.h).
 std::string scene_schema();
 std::string node_reference_markdown(const NodeRegistry& registry = NodeRegistry::builtin());
+// The README's summary table of node types: one row per type with its description, parameters (a
+// choice's values in parentheses) and outputs.
+std::string node_table_markdown(const NodeRegistry& registry = NodeRegistry::builtin());
 // One node type's reference as plain text for `lamina nodes TYPE`.
 std::string node_reference_text(const NodeDecl& decl);
 // The default of a parameter as JSON text ("0.0", "[1.0, 1.0]", "\"beckmann\"").

@@ -1,6 +1,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "graph/registry.h"
@@ -8,11 +11,31 @@
 #include "test_support.h"
 
 using namespace lamina;
+namespace fs = std::filesystem;
 
 TEST_CASE("the committed schema and node reference are exactly what lamina schema generates") {
   // Regenerate with: build/release/lamina schema -o schema
   CHECK(test::read_file(test::source_dir() / "schema/material.schema.json") == material_schema());
   CHECK(test::read_file(test::source_dir() / "schema/nodes.md") == node_reference_markdown());
+}
+
+TEST_CASE("the README's node table is the one generated from the declarations") {
+  // LAMINA_UPDATE_README=1 rewrites it after a node type or parameter changed.
+  const fs::path readme = test::source_dir() / "README.md";
+  const std::string text = test::read_file(readme);
+  const std::string start = "<!-- node table: generated from the node declarations";
+  const std::string end = "<!-- end of node table -->";
+  const size_t a = text.find(start);
+  REQUIRE(a != std::string::npos);
+  const size_t body = text.find('\n', a) + 1;
+  const size_t b = text.find(end, body);
+  REQUIRE(b != std::string::npos);
+  if (std::getenv("LAMINA_UPDATE_README")) {
+    std::ofstream(readme, std::ios::binary) << text.substr(0, body) + node_table_markdown() + text.substr(b);
+    return;
+  }
+  INFO("README.md's node table is out of date: rerun with LAMINA_UPDATE_README=1");
+  CHECK(text.substr(body, b - body) == node_table_markdown());
 }
 
 TEST_CASE("the schema declares every node type with its parameters and nothing else") {
