@@ -15,16 +15,6 @@ namespace lamina {
 
 namespace {
 
-int components(ValueType type) {
-  switch (type) {
-    case ValueType::Float: return 1;
-    case ValueType::Vec2: return 2;
-    case ValueType::Color:
-    case ValueType::Vec3: return 3;
-    default: return 0;
-  }
-}
-
 // Walks a checked graph once: texture and math nodes in topological order, each lowered by its
 // own behaviour into an op (or folded into constants when it is pure and its inputs are), then the
 // stack from the surface, depth first, each stack node lowered into its entry.
@@ -55,7 +45,7 @@ class Compiler final : public InputSource {
     InputRef r;
     r.node = g_.node(node).id;
     r.parameter = std::string(param);
-    r.size = components(p->type);
+    r.size = value_components(p->type);
     r.lo = float(p->lo);
     r.hi = float(p->hi);
     if (const auto* link = std::get_if<Link>(v)) {
@@ -98,20 +88,20 @@ class Compiler final : public InputSource {
       std::vector<float> scratch;
       for (const OutputDecl& o : decl.outputs) {
         op.outputs.push_back(int(scratch.size()));
-        scratch.resize(scratch.size() + size_t(components(o.type)), 0.0f);
+        scratch.resize(scratch.size() + size_t(value_components(o.type)), 0.0f);
       }
       decl.run(op, ShadingContext{}, scratch.data());
       for (size_t k = 0; k < decl.outputs.size(); ++k) {
         InputRef out;
         const int first = op.outputs[k];
-        for (int c = 0; c < components(decl.outputs[k].type); ++c) out.constant[c] = scratch[size_t(first + c)];
+        for (int c = 0; c < value_components(decl.outputs[k].type); ++c) out.constant[c] = scratch[size_t(first + c)];
         outputs_[{i, decl.outputs[k].name}] = out;
       }
       return;
     }
     for (const OutputDecl& o : decl.outputs) {
       InputRef out;
-      out.slot = allocate(components(o.type));
+      out.slot = allocate(value_components(o.type));
       op.outputs.push_back(out.slot);
       outputs_[{i, o.name}] = out;
     }

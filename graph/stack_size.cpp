@@ -7,20 +7,6 @@
 
 namespace lamina {
 
-namespace {
-
-int value_size(ValueType type) {
-  switch (type) {
-    case ValueType::Float: return 1;
-    case ValueType::Vec2: return 2;
-    case ValueType::Color:
-    case ValueType::Vec3: return 3;
-    default: return 0;
-  }
-}
-
-}  // namespace
-
 StackSize measure_stack(const Graph& graph) {
   StackSize size;
   std::vector<int> lobes(graph.size(), 0);
@@ -47,7 +33,7 @@ StackSize measure_stack(const Graph& graph) {
         break;
       case NodeKind::Texture:
       case NodeKind::Math:
-        for (const OutputDecl& output : decl.outputs) size.registers += value_size(output.type);
+        for (const OutputDecl& output : decl.outputs) size.registers += value_components(output.type);
         break;
       case NodeKind::Interface:
       case NodeKind::Medium: break;

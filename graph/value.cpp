@@ -18,6 +18,16 @@ std::string_view type_name(ValueType type) {
   return "?";
 }
 
+int value_components(ValueType type) {
+  switch (type) {
+    case ValueType::Float: return 1;
+    case ValueType::Vec2: return 2;
+    case ValueType::Color:
+    case ValueType::Vec3: return 3;
+    default: return 0;
+  }
+}
+
 bool is_closure(ValueType type) {
   return type == ValueType::Interface || type == ValueType::Medium || type == ValueType::Stack;
 }
