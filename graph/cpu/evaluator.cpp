@@ -141,10 +141,8 @@ struct Local {
   const k::LaminaEntry* entries;
   const k::LaminaParams* params;
 
-  vec3 eval(vec3 wi, vec3 wo) const {
-    if (wi.z <= 0.0f || wo.z <= 0.0f) return vec3(0.0f);
-    return k::lamina_stack_eval(count, entries, params, wi, wo);
-  }
+  // lamina_stack_eval returns 0 below the horizon itself.
+  vec3 eval(vec3 wi, vec3 wo) const { return k::lamina_stack_eval(count, entries, params, wi, wo); }
   void select(vec3 wo, Selection& s) const {
     k::lamina_stack_select(count, entries, params, wo, s.weight.data(), s.v.data(), s.valid.data());
   }
