@@ -51,3 +51,31 @@ LAMINA_FN float lamina_sqr(float x) { return x * x; }
 LAMINA_FN float lamina_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 LAMINA_FN float lamina_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
+
+// arccos as a polynomial (Abramowitz and Stegun, Handbook of Mathematical Functions, 4.4.46):
+// acos(x) = sqrt(1 - x) (a0 + a1 x + ... + a7 x^7) for 0 <= x <= 1, |error| <= 2e-8, and
+// acos(-x) = pi - acos(x). The kernels' own arithmetic rather than the platform's acos, whose
+// rounding differs between C++ libraries and GLSL implementations by far more than float's: a
+// formula that cancels (Oren-Nayar near grazing) would turn that into visible CPU/GPU differences.
+LAMINA_FN float lamina_acos(float x) {
+  float a = min(abs(x), 1.0f);
+  float p = -0.0012624911f;
+  p = p * a + 0.0066700901f;
+  p = p * a - 0.0170881256f;
+  p = p * a + 0.0308918810f;
+  p = p * a - 0.0501743046f;
+  p = p * a + 0.0889789874f;
+  p = p * a - 0.2145988016f;
+  p = p * a + 1.5707963050f;
+  float r = sqrt(1.0f - a) * p;
+  return x < 0.0f ? LAMINA_PI - r : r;
+}
+
+// 1 - exp(-y) for y >= 0, accurate to float precision also where exp(-y) is within rounding of 1
+// (1 - exp(-y) loses every digit there): below 1/4 the Taylor series to y^6, whose remainder
+// y^7 / 5040 is under 5e-8 of the value; above, the subtraction loses less than 3e-7.
+LAMINA_FN float lamina_one_minus_exp(float y) {
+  float series =
+      y * (1.0f - y * (0.5f - y * (1.0f / 6.0f - y * (1.0f / 24.0f - y * (1.0f / 120.0f - y * (1.0f / 720.0f))))));
+  return y < 0.25f ? series : 1.0f - exp(-y);
+}

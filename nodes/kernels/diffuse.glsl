@@ -13,8 +13,8 @@ LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   // alpha = max(theta_i, theta_o) has the smaller cosine, beta = min(theta_i, theta_o) the larger.
   float cos_alpha = min(min(wi.z, wo.z), 1.0f);
   float cos_beta = min(max(wi.z, wo.z), 1.0f);
-  float alpha = acos(cos_alpha);
-  float beta = acos(cos_beta);
+  float alpha = lamina_acos(cos_alpha);
+  float beta = lamina_acos(cos_beta);
   float sin_alpha = lamina_safe_sqrt(1.0f - cos_alpha * cos_alpha);
   float sin_beta = lamina_safe_sqrt(1.0f - cos_beta * cos_beta);
   // tan(beta) from the cosine, since acos rounds up to just above pi/2 near grazing and tan would

@@ -131,9 +131,11 @@ LAMINA_FN vec3 sample_microfacet_normal(int distribution, float m, vec2 u) {
   } else if (distribution == 1) {
     // Walter et al. 2007 (Phong distribution): cos = u^(1 / (e + 2)), the inverse of the CDF
     // cos^(e + 2) of D cos over the hemisphere; written with 1 - u, uniform as well and never 0.
-    float c = pow(1.0f - ux, 1.0f / (blinn_exponent(mm) + 2.0f));
-    cos2 = c * c;
-    sin2 = 1.0f - cos2;
+    // As cos^2 = exp(-y) with y = -2 log(1 - u) / (e + 2), so that sin^2 = 1 - exp(-y) keeps its
+    // digits for narrow lobes, where cos^2 rounds to within a few ulp of 1.
+    float y = -2.0f * log(1.0f - ux) / (blinn_exponent(mm) + 2.0f);
+    cos2 = exp(-y);
+    sin2 = lamina_one_minus_exp(y);
   } else if (distribution == 2) {
     // Walter et al. 2007, eq. 35: tan^2 = alpha^2 u / (1 - u), as cos^2 and sin^2 without a pole.
     float den = 1.0f - ux + mm * mm * ux;

@@ -89,6 +89,34 @@ TEST_CASE("kernels: the common helpers square, weigh luminance and clamp the squ
   CHECK(double(k::LAMINA_INV_PI) == rel(1.0 / kPi, 1e-7));
 }
 
+TEST_CASE("kernels: lamina_one_minus_exp is 1 - exp(-y) to float precision, also for tiny y") {
+  double worst = 0.0;
+  for (int i = 0; i <= 4000; ++i) {
+    const float y = std::ldexp(1.0f, -40) * std::pow(2.0f, float(i) / 100.0f);  // 2^-40 .. 2^0
+    worst = std::max(worst, std::abs(double(k::lamina_one_minus_exp(y)) / -std::expm1(-double(y)) - 1.0));
+  }
+  CHECK(worst < 5e-7);
+  CHECK(k::lamina_one_minus_exp(0.0f) == 0.0f);
+  CHECK(double(k::lamina_one_minus_exp(20.0f)) == rel(-std::expm1(-20.0), 1e-7));
+}
+
+TEST_CASE("kernels: lamina_acos is arccos within Abramowitz-Stegun's 2e-8 plus float rounding, over [-1, 1]") {
+  // Against the double-precision std::acos: 4.4.46's error bound is 2e-8; evaluating its eight
+  // terms in float adds a few ulp of pi.
+  double worst = 0.0;
+  for (int i = 0; i <= 20000; ++i) {
+    const float x = -1.0f + 2.0f * float(i) / 20000.0f;
+    worst = std::max(worst, std::abs(double(k::lamina_acos(x)) - std::acos(double(x))));
+  }
+  CHECK(worst < 1e-6);
+  CHECK(k::lamina_acos(1.0f) == 0.0f);
+  CHECK(double(k::lamina_acos(0.0f)) == rel(kPi / 2.0, 1e-7));
+  CHECK(double(k::lamina_acos(-1.0f)) == rel(kPi, 1e-7));
+  CHECK(double(k::lamina_acos(0.5f)) == rel(kPi / 3.0, 1e-6));
+  // Arguments rounded just past 1 stay on the curve's end instead of giving NaN.
+  CHECK(k::lamina_acos(1.0000001f) == 0.0f);
+  CHECK(double(k::lamina_acos(-1.0000001f)) == rel(kPi, 1e-7));
+}
 // ---------------------------------------------------------------------------------------------
 // fresnel.glsl
 
@@ -338,9 +366,12 @@ TEST_CASE("kernels: sample_microfacet_normal inverts the papers' CDFs") {
   // Blinn: cos = (1 - u)^(1/(e+2)) with e = 2/0.09 - 2, u = (0.5, 0):
   // python3 -c "e=2/0.09-2; c=0.5**(1/(e+2)); print((1-c*c)**0.5, c)"
   h = k::sample_microfacet_normal(1, 0.3f, vec2(0.5f, 0.0f));
-  CHECK(double(h.x) == rel(0.24592122882335352, 1e-4));  // sin from 1 - cos^2: float cancellation
+  CHECK(double(h.x) == rel(0.24592122882335352));
   CHECK(h.y == 0.0f);
   CHECK(double(h.z) == rel(0.969289816935065));
+  // A narrow Blinn lobe (m = 0.01, u = 0.2) keeps sin's digits, where cos^2 is within 2e-6 of 1:
+  // python3 -c "import math; e=2/0.0001-2; print(math.sqrt(-math.expm1(2*math.log(0.8)/(e+2))))"
+  CHECK(double(k::sample_microfacet_normal(1, 0.01f, vec2(0.2f, 0.0f)).x) == rel(0.0047237809187186406, 1e-6));
   // u = 0 is the normal for every distribution; unknown distributions give vec3(0).
   for (int dist : {0, 1, 2})
     CHECK_VEC3_NEAR(k::sample_microfacet_normal(dist, 0.3f, vec2(0.0f, 0.3f)), vec3(0.0f, 0.0f, 1.0f), 1e-7f);
