@@ -15,9 +15,17 @@
 // random numbers; the sample's f and pdf within the eval and pdf tolerance of the CPU's eval and
 // pdf at the direction the GPU drew. Every error is printed as a fraction of its tolerance, the
 // number the pass/fail rule uses: a check passes when its worst error is at most 1. A NaN or an
-// infinity on either side is an error of infinity. Queries whose u_layer lies within 1e-5 of a
-// boundary between two lobes' selection intervals are not compared for sampling (float rounding
-// may pick either lobe; the count is printed). Exits 1 on any failure.
+// infinity on either side is an error of infinity.
+//
+// Where the CPU's own answer is ill-conditioned, no implementation can be expected to match it to
+// 1e-3: a pdf near its integrable singularity (a folded microfacet lobe at the mirror direction),
+// grazing cancellation, or the sampling map at a discontinuity (u_layer at the boundary between
+// two lobes, u where a draw crosses the horizon). There, and only when the plain tolerance fails,
+// a check's tolerance widens to the CPU's own spread under inputs nudged as far as the two sides'
+// roundings differ: each direction component by +-1e-6 (renormalised) for eval and pdf, each of
+// u and u_layer by +-1e-5 for the sampled direction. Such queries are counted and printed ("ill-
+// conditioned"), and a run fails when they exceed 1% of its queries, so that the widening cannot
+// hide a broad error. Exits 1 on any failure.
 //
 // Image textures are bound as the module's header says: RGBA32F textures of the decoded texels.
 //
@@ -56,7 +64,10 @@ using namespace lamina;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr float kRelTol = 1e-3f, kAbsFloor = 1e-5f, kDirTol = 1e-4f, kLobeMargin = 1e-5f;
+constexpr float kRelTol = 1e-3f, kAbsFloor = 1e-5f, kDirTol = 1e-4f;
+// How far the conditioning check nudges directions (per component) and random numbers, and the
+// share of a run's queries whose tolerance it may widen.
+constexpr float kDirectionNudge = 1e-6f, kRandomNudge = 1e-5f, kIllConditionedShare = 0.01f;
 
 struct Query {
   vec3 wi, wo;
@@ -118,11 +129,61 @@ void main() {
 
 std::string harness(const std::string& prefix) { return glsl::replace_all(kHarness, "NAME", prefix); }
 
-// |gpu - cpu| / max(1e-3 |cpu|, 1e-5): the error as a fraction of the eval and pdf tolerance.
-// Infinite when either side is not finite.
-float tolerance_fraction(float gpu, float cpu) {
+// |gpu - cpu| / max(1e-3 |cpu|, 1e-5): the error as a fraction of the eval and pdf tolerance,
+// widened to `spread` where the CPU is ill-conditioned. Infinite when either side is not finite.
+float tolerance_fraction(float gpu, float cpu, float spread = 0.0f) {
   if (!std::isfinite(gpu) || !std::isfinite(cpu)) return INFINITY;
-  return std::abs(gpu - cpu) / std::max(kRelTol * std::abs(cpu), kAbsFloor);
+  return std::abs(gpu - cpu) / std::max({kRelTol * std::abs(cpu), kAbsFloor, spread});
+}
+
+// The fractions of eval's three channels and the pdf.
+vec4 eval_fractions(const vec4& gpu, const cpu::EvalPdf& cpu, const vec4& spread = vec4(0.0f)) {
+  vec4 f;
+  for (int c = 0; c < 3; ++c) f[c] = tolerance_fraction(gpu[c], cpu.f[c], spread[c]);
+  f.w = tolerance_fraction(gpu.w, cpu.pdf, spread.w);
+  return f;
+}
+
+bool within(const vec4& fractions) {
+  return fractions.x <= 1.0f && fractions.y <= 1.0f && fractions.z <= 1.0f && fractions.w <= 1.0f;
+}
+
+// How far the CPU's eval (per channel) and pdf move when one component of wi or of wo is nudged by
+// kDirectionNudge: the error an implementation that rounds differently may make there.
+vec4 eval_spread(const cpu::Evaluator& e, const ShadingContext& ctx, vec3 wi, vec3 wo) {
+  const cpu::EvalPdf at = e.eval_pdf(ctx, wi, wo);
+  const vec4 base(at.f, at.pdf);
+  vec4 spread(0.0f);
+  for (int which = 0; which < 2; ++which)
+    for (int c = 0; c < 3; ++c)
+      for (float sign : {-1.0f, 1.0f}) {
+        vec3 a = wi, b = wo;
+        vec3& nudged = which == 0 ? a : b;
+        nudged[c] += sign * kDirectionNudge;
+        nudged = glm::normalize(nudged);
+        const cpu::EvalPdf n = e.eval_pdf(ctx, a, b);
+        const vec4 change = glm::abs(vec4(n.f, n.pdf) - base);
+        if (std::isfinite(change.x + change.y + change.z + change.w)) spread = glm::max(spread, change);
+      }
+  return spread;
+}
+
+// How far the CPU's sampled direction moves (largest component) when one of u and u_layer is
+// nudged by kRandomNudge; infinite where a nudge changes whether anything is drawn.
+float direction_spread(const cpu::Evaluator& e, const ShadingContext& ctx, const Query& q, const cpu::Sample& drawn) {
+  float spread = 0.0f;
+  for (int k = 0; k < 3; ++k)
+    for (float sign : {-1.0f, 1.0f}) {
+      vec2 u = q.u;
+      float u_layer = q.u_layer;
+      float& nudged = k < 2 ? u[k] : u_layer;
+      nudged = std::clamp(nudged + sign * kRandomNudge, 0.0f, std::nextafter(1.0f, 0.0f));
+      const cpu::Sample n = e.sample(ctx, q.wo, u, u_layer);
+      if ((n.pdf > 0.0f) != (drawn.pdf > 0.0f)) return INFINITY;
+      const vec3 change = glm::abs(n.wi - drawn.wi);
+      spread = std::max({spread, change.x, change.y, change.z});
+    }
+  return spread;
 }
 
 // The worst of one check's errors, each a fraction of its tolerance; NaN counts as infinite.
@@ -148,9 +209,11 @@ struct Run {
 // The checks of one run.
 struct Checks {
   Worst eval, pdf, direction, sample_f, sample_pdf;
-  int skipped = 0;
+  int ill_conditioned = 0;  // queries that pass only on the CPU's own spread
+  bool too_many_ill_conditioned = false;
   int failures() const {
-    return eval.failures + pdf.failures + direction.failures + sample_f.failures + sample_pdf.failures;
+    return eval.failures + pdf.failures + direction.failures + sample_f.failures + sample_pdf.failures +
+           int(too_many_ill_conditioned);
   }
 };
 
@@ -188,7 +251,7 @@ bool perturb(std::string& source, const std::string& prefix, Perturbation kind) 
 std::optional<Checks> run_material(gltest::Runner& runner, const Program& program, const Run& run,
                                    Perturbation perturbation, const std::vector<Query>& queries,
                                    const cpu::Evaluator& cpu_eval, const std::vector<cpu::EvalPdf>& ref_eval,
-                                   const std::vector<cpu::Sample>& ref_sample, const std::vector<bool>& skip_sample) {
+                                   const std::vector<cpu::Sample>& ref_sample) {
   const char* target = glsl::target_name(run.target);
   const char* mode = run.uniforms ? "uniforms" : "inline";
   glsl::Options options;
@@ -226,38 +289,60 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
 
   Checks checks;
   for (size_t i = 0; i < queries.size(); ++i) {
-    const vec4 e = out[0][i], s = out[1][i], sf = out[2][i];
-    for (int c = 0; c < 3; ++c) checks.eval.add(tolerance_fraction(e[c], ref_eval[i].f[c]), i);
-    checks.pdf.add(tolerance_fraction(e.w, ref_eval[i].pdf), i);
-    if (skip_sample[i]) {
-      ++checks.skipped;
-      continue;
+    const Query& q = queries[i];
+    ShadingContext ctx;
+    ctx.uv = q.uv;
+    bool widened = false;
+    // The plain tolerance first; the CPU's spread only where that fails (see the top of the file).
+    vec4 e = eval_fractions(out[0][i], ref_eval[i]);
+    if (!within(e)) {
+      vec4 wide = eval_fractions(out[0][i], ref_eval[i], eval_spread(cpu_eval, ctx, q.wi, q.wo));
+      widened = within(wide);
+      e = wide;
     }
+    for (int c = 0; c < 3; ++c) checks.eval.add(e[c], i);
+    checks.pdf.add(e.w, i);
+
+    const vec4 s = out[1][i], sf = out[2][i];
     const cpu::Sample& r = ref_sample[i];
     // The CPU gives wi = 0 and pdf = 0 when it draws nothing; the GPU must do the same.
     const bool gpu_drew = !(s.w == 0.0f);  // NaN counts as drawn, and fails below
     const vec3 diff = glm::abs(vec3(s) - r.wi);
     float d = std::isfinite(diff.x + diff.y + diff.z) ? std::max({diff.x, diff.y, diff.z}) : INFINITY;
     if ((r.pdf > 0.0f) != gpu_drew) d = INFINITY;
-    checks.direction.add(d / kDirTol, i);
+    float direction = d / kDirTol;
+    if (!(direction <= 1.0f) && !std::isnan(d)) {
+      direction = d / std::max(kDirTol, direction_spread(cpu_eval, ctx, q, r));
+      widened = widened || direction <= 1.0f;
+    }
+    checks.direction.add(direction, i);
     // The sample's f and pdf must be eval and pdf at the direction the GPU drew: compare with the
     // CPU at that direction (the direction itself is checked above, against the CPU's draw).
     if (r.pdf > 0.0f || gpu_drew) {
-      ShadingContext ctx;
-      ctx.uv = queries[i].uv;
-      cpu::EvalPdf at = s.w > 0.0f ? cpu_eval.eval_pdf(ctx, vec3(s), queries[i].wo) : cpu::EvalPdf{};
-      checks.sample_pdf.add(tolerance_fraction(s.w, at.pdf), i);
-      for (int c = 0; c < 3; ++c) checks.sample_f.add(tolerance_fraction(sf[c], at.f[c]), i);
+      const vec3 at_wi = vec3(s);
+      cpu::EvalPdf at = s.w > 0.0f ? cpu_eval.eval_pdf(ctx, at_wi, q.wo) : cpu::EvalPdf{};
+      vec4 f = eval_fractions(vec4(vec3(sf), s.w), at);
+      if (!within(f) && s.w > 0.0f) {
+        vec4 wide = eval_fractions(vec4(vec3(sf), s.w), at, eval_spread(cpu_eval, ctx, at_wi, q.wo));
+        widened = widened || within(wide);
+        f = wide;
+      }
+      for (int c = 0; c < 3; ++c) checks.sample_f.add(f[c], i);
+      checks.sample_pdf.add(f.w, i);
     }
+    checks.ill_conditioned += widened ? 1 : 0;
   }
-  std::printf("  %-5s %-8s eval %8.2e  pdf %8.2e  sample dir %8.2e  sample f %8.2e  sample pdf %8.2e  (%d skipped)%s\n",
-              target, mode, double(checks.eval.fraction), double(checks.pdf.fraction),
-              double(checks.direction.fraction), double(checks.sample_f.fraction), double(checks.sample_pdf.fraction),
-              checks.skipped, checks.failures() ? "  FAIL" : "");
+  checks.too_many_ill_conditioned = float(checks.ill_conditioned) > kIllConditionedShare * float(queries.size());
+  std::printf(
+      "  %-5s %-8s eval %8.2e  pdf %8.2e  sample dir %8.2e  sample f %8.2e  sample pdf %8.2e  (%d "
+      "ill-conditioned%s)%s\n",
+      target, mode, double(checks.eval.fraction), double(checks.pdf.fraction), double(checks.direction.fraction),
+      double(checks.sample_f.fraction), double(checks.sample_pdf.fraction), checks.ill_conditioned,
+      checks.too_many_ill_conditioned ? ", more than 1%" : "", checks.failures() ? "  FAIL" : "");
   auto describe = [&](const char* what, size_t q) {
     const Query& x = queries[q];
     std::printf(
-        "    worst %s at wi (%.6g, %.6g, %.6g) wo (%.6g, %.6g, %.6g) uv (%.4g, %.4g) u (%.6g, %.6g) u_layer %.6g\n",
+        "    worst %s at wi (%.9g, %.9g, %.9g) wo (%.9g, %.9g, %.9g) uv (%.9g, %.9g) u (%.9g, %.9g) u_layer %.9g\n",
         what, double(x.wi.x), double(x.wi.y), double(x.wi.z), double(x.wo.x), double(x.wo.y), double(x.wo.z),
         double(x.uv.x), double(x.uv.y), double(x.u.x), double(x.u.y), double(x.u_layer));
   };
@@ -268,6 +353,15 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
     if (checks.eval.failures) describe("eval", checks.eval.query);
     if (checks.pdf.failures) describe("pdf", checks.pdf.query);
     if (checks.direction.failures) describe("sample direction", checks.direction.query);
+    if (checks.sample_pdf.failures) {
+      size_t q = checks.sample_pdf.query;
+      describe("sample pdf", q);
+      const vec4 g = out[1][q];
+      ShadingContext ctx;
+      ctx.uv = queries[q].uv;
+      std::printf("    GPU drew wi (%.9g, %.9g, %.9g) with pdf %.7g, CPU pdf there %.7g\n", double(g.x), double(g.y),
+                  double(g.z), double(g.w), double(cpu_eval.eval_pdf(ctx, vec3(g), queries[q].wo).pdf));
+    }
     if (checks.sample_f.failures) {
       size_t q = checks.sample_f.query;
       describe("sample f", q);
@@ -402,26 +496,17 @@ int main(int argc, char** argv) {
     cpu::Evaluator cpu_eval(program);
     std::vector<cpu::EvalPdf> ref_eval;
     std::vector<cpu::Sample> ref_sample;
-    std::vector<bool> skip;
     for (const Query& q : queries) {
       ShadingContext ctx;
       ctx.uv = q.uv;
       ref_eval.push_back(cpu_eval.eval_pdf(ctx, q.wi, q.wo));
       ref_sample.push_back(cpu_eval.sample(ctx, q.wo, q.u, q.u_layer));
-      std::vector<float> w = cpu_eval.lobe_weights(ctx, q.wo);
-      float cumulative = 0.0f;
-      bool near = false;
-      for (float x : w) {
-        cumulative += x;
-        near = near || std::abs(q.u_layer - cumulative) < kLobeMargin;
-      }
-      skip.push_back(near);
     }
     std::printf("%s (%s, %zu lobes)\n", program.name.c_str(), program.source_file.c_str(), cpu_eval.lobe_count());
     for (const Run& run : runs) {
       gltest::Runner& runner = run.target == glsl::Target::Es300 ? *es : *desktop;
       std::optional<Checks> checks =
-          run_material(runner, program, run, perturbation, queries, cpu_eval, ref_eval, ref_sample, skip);
+          run_material(runner, program, run, perturbation, queries, cpu_eval, ref_eval, ref_sample);
       ++total;
       bool good = checks && (perturbation == Perturbation::None ? checks->failures() == 0
                                                                 : broken_check_failures(*checks, perturbation) > 0);
