@@ -67,9 +67,10 @@ LAMINA_FN float d_microfacet_h(int distribution, vec3 h, float m) {
   }
   if (distribution == 1) {
     float e = blinn_exponent(m);
-    // cos^e = exp(e/2 ln(1 - s)) with s = sin^2 / |h|^2; ln(1 - s) by its series for small s.
+    // cos^e = exp(e/2 ln(1 - s)) with s = sin^2 / |h|^2; ln(1 - s) by its series for small s, and
+    // 1 - s as cos^2 / |h|^2 elsewhere, which keeps its digits near the horizon too.
     float s = sin2 / (sin2 + c2);
-    float log_c2 = s < 0.01f ? -s * (1.0f + s * (0.5f + s * (1.0f / 3.0f + 0.25f * s))) : log(1.0f - s);
+    float log_c2 = s < 0.01f ? -s * (1.0f + s * (0.5f + s * (1.0f / 3.0f + 0.25f * s))) : log(c2 / (sin2 + c2));
     return (e + 2.0f) * (0.5f * LAMINA_INV_PI) * exp(0.5f * e * log_c2);
   }
   if (distribution == 2) {
