@@ -72,21 +72,23 @@ class Writer {
   std::string out_;
 };
 
+// A parameter value as JSON text.
+struct ValueText {
+  std::string operator()(double d) const { return number_text(d); }
+  template <size_t N>
+  std::string operator()(const std::array<double, N>& a) const {
+    std::string out = "[";
+    for (size_t i = 0; i < N; ++i) out += (i ? ", " : "") + number_text(a[i]);
+    return out + "]";
+  }
+  std::string operator()(bool b) const { return b ? "true" : "false"; }
+  std::string operator()(const std::string& s) const { return quoted(s); }
+  std::string operator()(const Link& l) const { return quoted(to_string(l)); }
+};
+
 }  // namespace
 
-std::string value_json(const Value& v) {
-  struct Visitor {
-    std::string operator()(double d) const { return number_text(d); }
-    std::string operator()(const Vec2d& a) const { return "[" + number_text(a[0]) + ", " + number_text(a[1]) + "]"; }
-    std::string operator()(const Vec3d& a) const {
-      return "[" + number_text(a[0]) + ", " + number_text(a[1]) + ", " + number_text(a[2]) + "]";
-    }
-    std::string operator()(bool b) const { return b ? "true" : "false"; }
-    std::string operator()(const std::string& s) const { return quoted(s); }
-    std::string operator()(const Link& l) const { return quoted(to_string(l)); }
-  };
-  return std::visit(Visitor{}, v);
-}
+std::string value_json(const Value& v) { return std::visit(ValueText{}, v); }
 
 std::string write_document(const Document& document, const NodeRegistry& registry) {
   return Writer(registry).write(document);

@@ -46,12 +46,29 @@ ParamDecl& ParamDecl::at_most(double high) {
   hi = high;
   return *this;
 }
+ParamDecl& ParamDecl::below(double high) {
+  hi = high;
+  hi_open = true;
+  return *this;
+}
+ParamDecl& ParamDecl::magnitude_at_least(double m) {
+  min_magnitude = m;
+  return *this;
+}
+ParamDecl& ParamDecl::at_most_characters(size_t n) {
+  max_length = n;
+  return *this;
+}
 ParamDecl& ParamDecl::in_unit(std::string u) {
   unit = std::move(u);
   return *this;
 }
 ParamDecl& ParamDecl::or_default(Value v) {
   fallback = std::move(v);
+  return *this;
+}
+ParamDecl& ParamDecl::optional() {
+  omissible = true;
   return *this;
 }
 ParamDecl& ParamDecl::one_of(std::vector<std::string> options) {
@@ -78,19 +95,55 @@ ParamDecl& ParamDecl::described(std::string text) {
 
 bool ParamDecl::has_range() const { return std::isfinite(lo) || std::isfinite(hi); }
 
-std::string ParamDecl::range_text() const {
+bool ParamDecl::in_range(double v) const {
+  const bool below = lo_open ? !(v > lo) : v < lo;
+  const bool above = hi_open ? !(v < hi) : v > hi;
+  return !below && !above && std::abs(v) >= min_magnitude;
+}
+
+std::string ParamDecl::range_text() const { return range_text(name); }
+
+std::string ParamDecl::range_text(std::string_view label) const {
   std::string out;
   if (std::isfinite(lo)) out += number_text(lo) + (lo_open ? " < " : " <= ");
-  out += name;
-  if (std::isfinite(hi)) out += " <= " + number_text(hi);
+  out += label;
+  if (std::isfinite(hi)) out += (hi_open ? " < " : " <= ") + number_text(hi);
+  if (min_magnitude > 0.0) out += ", |" + std::string(label) + "| >= " + number_text(min_magnitude);
   return out;
 }
 
-const ParamDecl* NodeDecl::find_param(std::string_view name) const {
+std::string ParamDecl::expected_text() const {
+  switch (type) {
+    case ValueType::Float: return "a number";
+    case ValueType::Integer: return "a whole number";
+    case ValueType::Color: return "an RGB colour [r, g, b]";
+    case ValueType::Vec2: return "an array [u, v]";
+    case ValueType::Vec3: return "an array [x, y, z]";
+    case ValueType::Quaternion: return "a quaternion [x, y, z, w]";
+    case ValueType::Bool: return "true or false";
+    case ValueType::Enum: return "one of " + join_alternatives(choices);
+    case ValueType::String: return "a string";
+    case ValueType::Object: return "an object";
+    case ValueType::Interface:
+    case ValueType::Medium:
+    case ValueType::Stack: return "a link to " + std::string(type_name(type)) + " node such as \"@id\"";
+  }
+  return "?";
+}
+
+const ParamDecl* find_param(const std::vector<ParamDecl>& params, std::string_view name) {
   for (const auto& p : params)
     if (p.name == name) return &p;
   return nullptr;
 }
+
+std::vector<std::string> param_names(const std::vector<ParamDecl>& params) {
+  std::vector<std::string> names;
+  for (const auto& p : params) names.push_back(p.name);
+  return names;
+}
+
+const ParamDecl* NodeDecl::find_param(std::string_view name) const { return lamina::find_param(params, name); }
 
 const OutputDecl* NodeDecl::find_output(std::string_view name) const {
   if (outputs.empty()) return nullptr;
@@ -108,11 +161,7 @@ bool NodeDecl::in_alternative(std::string_view name) const {
   return false;
 }
 
-std::vector<std::string> NodeDecl::param_names() const {
-  std::vector<std::string> names;
-  for (const auto& p : params) names.push_back(p.name);
-  return names;
-}
+std::vector<std::string> NodeDecl::param_names() const { return lamina::param_names(params); }
 
 std::vector<std::string> NodeDecl::output_names() const {
   std::vector<std::string> names;

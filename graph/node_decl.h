@@ -35,7 +35,11 @@ struct ParamDecl {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false;                  // lo < value instead of lo <= value
-  std::optional<Value> fallback;         // the default; none: required unless part of an Alternatives
+  bool hi_open = false;                  // value < hi instead of value <= hi
+  double min_magnitude = 0.0;            // each number's |value| at least this; 0: no such bound
+  size_t max_length = 0;                 // String: at most this many characters (Unicode code points); 0: any
+  std::optional<Value> fallback;         // the default; none: required unless optional or part of an Alternatives
+  bool omissible = false;                // may be left out though it has no default (absent means none)
   std::vector<std::string> choices;      // for ValueType::Enum
   std::vector<std::string> choice_docs;  // empty, or one line per choice for the references
   bool linkable = false;                 // may be "@node.output" instead of a constant
@@ -46,20 +50,34 @@ struct ParamDecl {
   ParamDecl& above(double low);     // low < value, no upper bound
   ParamDecl& at_least(double low);  // low <= value, no upper bound
   ParamDecl& at_most(double high);  // value <= high, keeping the lower bound
+  ParamDecl& below(double high);    // value < high, keeping the lower bound
+  ParamDecl& magnitude_at_least(double m);
+  ParamDecl& at_most_characters(size_t n);
   ParamDecl& in_unit(std::string u);
   ParamDecl& or_default(Value v);
+  ParamDecl& optional();  // no default, and none needed: e.g. an infinite far plane when left out
   ParamDecl& one_of(std::vector<std::string> options);
   // The choices with a line each (what the value means, its constants, their source).
   ParamDecl& one_of_described(std::vector<std::pair<std::string, std::string>> options);
   ParamDecl& links();
   ParamDecl& described(std::string text);
 
-  bool required() const { return !fallback.has_value(); }
+  bool required() const { return !fallback.has_value() && !omissible; }
   bool has_range() const;
+  bool in_range(double v) const;   // within lo and hi, and of at least min_magnitude
   std::string range_text() const;  // "1 <= ior <= 4"
+  // The range with `label` for the name ("-1e+09 <= scale[1] <= 1e+09, |scale[1]| >= 1e-06").
+  std::string range_text(std::string_view label) const;
+  // What a value of the declared type looks like, for "expected ..." messages: "a number", "an RGB
+  // colour [r, g, b]", "one of a, b or c".
+  std::string expected_text() const;
 };
 
 ParamDecl param(std::string name, ValueType type);
+
+// The declaration called `name` in `params`; nullptr when there is none.
+const ParamDecl* find_param(const std::vector<ParamDecl>& params, std::string_view name);
+std::vector<std::string> param_names(const std::vector<ParamDecl>& params);
 
 struct OutputDecl {
   std::string name;

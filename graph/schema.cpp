@@ -9,6 +9,7 @@
 #include "graph/json_write.h"
 #include "graph/limits.h"
 #include "graph/number_text.h"
+#include "graph/param_schema.h"
 
 namespace lamina {
 
@@ -21,68 +22,13 @@ constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]{0,63}$";
 constexpr const char* kLinkPattern = "^@[A-Za-z_][A-Za-z0-9_]{0,63}(\\.[A-Za-z_][A-Za-z0-9_]{0,63})?$";
 static_assert(kMaxIdentifierLength == 64, "the patterns above spell out the identifier length");
 
-Json def_ref(const std::string& name) { return Json{{"$ref", "#/$defs/" + name}}; }
-
-Json number_schema(const ParamDecl& p) {
-  // Every number also has a magnitude of at most kMaxNodeNumber, whatever the parameter's range.
-  Json n{{"type", "number"}};
-  if (p.lo > -kMaxNodeNumber)
-    n[p.lo_open ? "exclusiveMinimum" : "minimum"] = p.lo;
-  else
-    n["minimum"] = -kMaxNodeNumber;
-  n["maximum"] = std::min(p.hi, kMaxNodeNumber);
-  return n;
-}
-
-Json default_json(const Value& v) {
-  struct Visitor {
-    Json operator()(double d) const { return d; }
-    Json operator()(const Vec2d& a) const { return Json::array({a[0], a[1]}); }
-    Json operator()(const Vec3d& a) const { return Json::array({a[0], a[1], a[2]}); }
-    Json operator()(bool b) const { return b; }
-    Json operator()(const std::string& s) const { return s; }
-    Json operator()(const Link&) const { return nullptr; }
-  };
-  return std::visit(Visitor{}, v);
-}
-
-std::string describe(const ParamDecl& p) {
-  std::string text = p.doc;
-  if (!p.unit.empty()) text += " [" + p.unit + "]";
-  return text;
-}
-
-Json value_schema(const ParamDecl& p) {
-  Json s;
-  switch (p.type) {
-    case ValueType::Float: s = number_schema(p); break;
-    case ValueType::Color:
-    case ValueType::Vec3:
-    case ValueType::Vec2: {
-      size_t size = p.type == ValueType::Vec2 ? 2 : 3;
-      s = Json{{"type", "array"}, {"items", number_schema(p)}, {"minItems", size}, {"maxItems", size}};
-      break;
-    }
-    case ValueType::Bool: s = Json{{"type", "boolean"}}; break;
-    case ValueType::Enum: s = Json{{"enum", p.choices}}; break;
-    case ValueType::String: s = Json{{"type", "string"}, {"minLength", 1}}; break;
-    case ValueType::Interface:
-    case ValueType::Medium:
-    case ValueType::Stack: s = def_ref("link"); break;
-  }
-  if (p.linkable && !is_closure(p.type)) s = Json{{"anyOf", Json::array({s, def_ref("link")})}};
-  s["description"] = describe(p);
-  if (p.fallback && !std::holds_alternative<Link>(*p.fallback)) s["default"] = default_json(*p.fallback);
-  return s;
-}
-
 Json node_schema(const NodeDecl& d) {
   Json properties;
-  properties["id"] = def_ref("identifier");
+  properties["id"] = schema_ref("identifier");
   properties["type"] = Json{{"const", d.type}};
   Json required = Json::array({"id", "type"});
   for (const auto& p : d.params) {
-    properties[p.name] = value_schema(p);
+    properties[p.name] = param_schema(p);
     if (p.required() && !d.in_alternative(p.name)) required.push_back(p.name);
   }
   Json s{{"description", d.doc},
@@ -133,6 +79,7 @@ std::string range_cell(const ParamDecl& p) {
 
 std::string default_cell(const NodeDecl& d, const ParamDecl& p) {
   if (p.fallback) return default_text(p);
+  if (p.omissible) return "(none)";
   return d.in_alternative(p.name) ? "(alternative)" : "required";
 }
 
@@ -169,10 +116,10 @@ std::string material_schema(const NodeRegistry& registry) {
     defs[def] = node_schema(d);
     dispatch.push_back(
         Json{{"if", Json{{"properties", Json{{"type", Json{{"const", d.type}}}}}, {"required", {"type"}}}},
-             {"then", def_ref(def)}});
+             {"then", schema_ref(def)}});
   }
   Json node{{"type", "object"},
-            {"properties", Json{{"id", def_ref("identifier")}, {"type", Json{{"enum", node_types}}}}},
+            {"properties", Json{{"id", schema_ref("identifier")}, {"type", Json{{"enum", node_types}}}}},
             {"required", Json::array({"id", "type"})},
             {"allOf", dispatch}};
   defs["node"] = node;
@@ -180,7 +127,7 @@ std::string material_schema(const NodeRegistry& registry) {
   defs["material"] =
       Json{{"type", "object"},
            {"properties",
-            Json{{"name", def_ref("identifier")},
+            Json{{"name", schema_ref("identifier")},
                  {"class",
                   Json{{"description", "the course's class a)-h); checked against the structure"}, {"enum", classes}}},
                  {"source", Json{{"type", "string"}}},
@@ -190,8 +137,8 @@ std::string material_schema(const NodeRegistry& registry) {
                         "raise each interface's roughness to at least the one above it (Elek sec. 3); default true"},
                        {"type", "boolean"},
                        {"default", true}}},
-                 {"surface", def_ref("link")},
-                 {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("node")}}}}},
+                 {"surface", schema_ref("link")},
+                 {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", schema_ref("node")}}}}},
            {"required", Json::array({"name", "surface", "nodes"})},
            {"additionalProperties", false}};
   Json schema{
@@ -205,7 +152,7 @@ std::string material_schema(const NodeRegistry& registry) {
       {"type", "object"},
       {"properties", Json{{"$schema", Json{{"type", "string"}}},
                           {"format", Json{{"const", kFormatVersion}}},
-                          {"materials", Json{{"type", "array"}, {"minItems", 1}, {"items", def_ref("material")}}}}},
+                          {"materials", Json{{"type", "array"}, {"minItems", 1}, {"items", schema_ref("material")}}}}},
       {"required", Json::array({"format", "materials"})},
       {"additionalProperties", false},
       {"$defs", defs}};

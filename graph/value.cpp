@@ -2,6 +2,22 @@
 
 namespace lamina {
 
+namespace {
+
+struct Numbers {
+  std::vector<double> operator()(double d) const { return {d}; }
+  template <size_t N>
+  std::vector<double> operator()(const std::array<double, N>& a) const {
+    return {a.begin(), a.end()};
+  }
+  template <class Other>
+  std::vector<double> operator()(const Other&) const {
+    return {};
+  }
+};
+
+}  // namespace
+
 std::string_view type_name(ValueType type) {
   switch (type) {
     case ValueType::Float: return "float";
@@ -14,6 +30,9 @@ std::string_view type_name(ValueType type) {
     case ValueType::Interface: return "interface";
     case ValueType::Medium: return "medium";
     case ValueType::Stack: return "stack";
+    case ValueType::Integer: return "integer";
+    case ValueType::Quaternion: return "quaternion";
+    case ValueType::Object: return "object";
   }
   return "?";
 }
@@ -31,6 +50,8 @@ int value_components(ValueType type) {
 bool is_closure(ValueType type) {
   return type == ValueType::Interface || type == ValueType::Medium || type == ValueType::Stack;
 }
+
+std::vector<double> value_numbers(const Value& v) { return std::visit(Numbers{}, v); }
 
 std::string to_string(const Link& link) {
   return link.output.empty() ? "@" + link.node : "@" + link.node + "." + link.output;

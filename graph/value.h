@@ -1,10 +1,12 @@
-// Value types of the material graph: what a parameter holds and what a node outputs.
+// Value types of the material graph (what a parameter holds and what a node outputs) and of the
+// keys of a scene file, which are declared with the same ParamDecl (graph/scene/scene_fields.h).
 #pragma once
 
 #include <array>
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace lamina {
 
@@ -21,6 +23,10 @@ enum class ValueType {
   Interface,
   Medium,
   Stack,  // something a layer can sit on: a layer, a mix or a substrate
+  // Only in scene files (tests/nodes/registry_test.cpp keeps them out of node declarations):
+  Integer,     // a whole number
+  Quaternion,  // [x, y, z, w], glTF's order
+  Object,      // a nested object with declarations of its own; its schema is the $defs entry of its name
 };
 
 std::string_view type_name(ValueType type);
@@ -40,9 +46,13 @@ std::string to_string(const Link& link);
 
 using Vec2d = std::array<double, 2>;
 using Vec3d = std::array<double, 3>;
+using Vec4d = std::array<double, 4>;
 
 // A parameter's value as written in the file. Colours and vec3 share Vec3d; the declared
-// ValueType tells them apart. Enums and strings share std::string.
-using Value = std::variant<double, Vec2d, Vec3d, bool, std::string, Link>;
+// ValueType tells them apart. Enums and strings share std::string; floats and integers double.
+using Value = std::variant<double, Vec2d, Vec3d, Vec4d, bool, std::string, Link>;
+
+// The numbers of a number or an array of them, in order; empty for the other values.
+std::vector<double> value_numbers(const Value& v);
 
 }  // namespace lamina

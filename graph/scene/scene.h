@@ -18,6 +18,10 @@ namespace lamina {
 
 inline constexpr int kSceneFormatVersion = 1;
 
+// The initialisers below serve scenes built in code (sample_sheet). What a scene file leaves out
+// takes the defaults declared in graph/scene/scene_fields.cpp, and
+// tests/graph/scene/scene_fields_test.cpp checks that the two agree.
+
 struct Camera {
   std::string name;
   glm::dvec3 position{0.0, 0.0, 5.0};

@@ -1,114 +1,70 @@
 #include "graph/scene/scene_fields.h"
 
-#include "graph/number_text.h"
-
-// The tables below name only what differs from SceneField's defaults; the rest keeps them.
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-
 namespace lamina {
 
 namespace {
 
-SceneField name_field(const std::string& what) {
-  return {.name = "name",
-          .type = SceneFieldType::Text,
-          .doc = "the " + what + "'s name, unique among the scene's " + what + "s",
-          .required = true};
+// A scene key; its numbers stay within +-kSceneNumberLimit unless declared narrower.
+ParamDecl field(std::string name, ValueType type, std::string doc) {
+  return param(std::move(name), type).range(-kSceneNumberLimit, kSceneNumberLimit).described(std::move(doc));
 }
 
-SceneField point3(const std::string& name, const std::string& doc, const std::string& fallback) {
-  return {.name = name, .type = SceneFieldType::Vec3, .doc = doc, .default_json = fallback};
+ParamDecl name_field(const std::string& what) {
+  return field("name", ValueType::String, "the " + what + "'s name, unique among the scene's " + what + "s");
 }
 
-SceneField positive(const std::string& name, const std::string& doc, const std::string& fallback) {
-  return {
-      .name = name, .type = SceneFieldType::Number, .doc = doc, .lo = 0.0, .lo_open = true, .default_json = fallback};
+ParamDecl point3(std::string name, std::string doc, Vec3d fallback) {
+  return field(std::move(name), ValueType::Vec3, std::move(doc)).or_default(fallback);
 }
 
-SceneField color_field() {
-  return {.name = "color",
-          .type = SceneFieldType::Color,
-          .doc = "linear RGB colour of the light",
-          .lo = 0.0,
-          .default_json = "[1.0, 1.0, 1.0]"};
+ParamDecl positive(std::string name, std::string doc) {
+  return field(std::move(name), ValueType::Float, std::move(doc)).above(0.0);
 }
 
-SceneField intensity_field(const std::string& doc) {
-  return {.name = "intensity", .type = SceneFieldType::Number, .doc = doc, .lo = 0.0, .default_json = "1.0"};
+ParamDecl color_field() {
+  return field("color", ValueType::Color, "linear RGB colour of the light")
+      .at_least(0.0)
+      .or_default(Vec3d{1.0, 1.0, 1.0});
 }
 
-SceneField range_field() {
-  return positive("range", "distance [scene units] beyond which the light has no effect; none: infinite", "");
+ParamDecl intensity_field(std::string doc) {
+  return field("intensity", ValueType::Float, std::move(doc)).at_least(0.0).or_default(1.0);
 }
 
-SceneField direction_field() {
-  return point3("direction", "where the light travels, any non-zero length", "[0.0, -1.0, 0.0]");
+ParamDecl range_field() {
+  return positive("range", "distance [scene units] beyond which the light has no effect; none: infinite").optional();
 }
 
-SceneField segments_field() {
-  return {.name = "segments",
-          .type = SceneFieldType::Integer,
-          .doc = "tessellation: quads around the shape; the rings across are derived from it",
-          .lo = kMinSegments,
-          .hi = kMaxSegments,
-          .default_json = "64"};
+ParamDecl direction_field() {
+  return point3("direction", "where the light travels, any non-zero length", Vec3d{0.0, -1.0, 0.0});
 }
 
-SceneField light_type_field() {
-  return {.name = "type",
-          .type = SceneFieldType::Choice,
-          .doc = "point, spot and directional as KHR_lights_punctual; environment: an equirectangular image",
-          .required = true,
-          .choices = light_type_names()};
+ParamDecl segments_field() {
+  return field("segments", ValueType::Integer,
+               "tessellation: quads around the shape; the rings across are derived from it")
+      .range(kMinSegments, kMaxSegments)
+      .or_default(64.0);
 }
 
-SceneField shape_field() {
-  return {.name = "shape",
-          .type = SceneFieldType::Choice,
-          .doc = "a built-in primitive (centred on the origin, y up) or a glTF mesh file",
-          .required = true,
-          .choices = shape_names()};
-}
-
-std::vector<SceneField> object_common() {
+std::vector<ParamDecl> object_common() {
   return {name_field("object"), shape_field(),
-          SceneField{.name = "material",
-                     .type = SceneFieldType::Text,
-                     .doc = "the name of a material defined in one of the scene's material files",
-                     .required = true},
-          SceneField{.name = "transform",
-                     .type = SceneFieldType::Object,
-                     .doc = "placement of the object: scale, then rotation, then translation (glTF's order)"},
-          SceneField{.name = "label",
-                     .type = SceneFieldType::Text,
-                     .doc = "text shown under the object in glTF viewers, on an unlit quad facing the first camera; "
-                            "none: no label",
-                     .max_length = kMaxLabelLength}};
+          field("material", ValueType::String, "the name of a material defined in one of the scene's material files"),
+          field("transform", ValueType::Object,
+                "placement of the object: scale, then rotation, then translation (glTF's order)")
+              .optional(),
+          field("label", ValueType::String,
+                "text shown under the object in glTF viewers, on an unlit quad facing the first camera; none: no "
+                "label")
+              .optional()
+              .at_most_characters(kMaxLabelLength)};
 }
 
-std::vector<SceneField> with(std::vector<SceneField> fields, const std::vector<SceneField>& more) {
+std::vector<ParamDecl> with(std::vector<ParamDecl> fields, const std::vector<ParamDecl>& more) {
   fields.insert(fields.end(), more.begin(), more.end());
   return fields;
 }
 
 }  // namespace
-
-size_t SceneField::components() const {
-  switch (type) {
-    case SceneFieldType::Vec2: return 2;
-    case SceneFieldType::Vec3:
-    case SceneFieldType::Color: return 3;
-    case SceneFieldType::Quaternion: return 4;
-    default: return 1;
-  }
-}
-
-std::string SceneField::range_text(const std::string& label) const {
-  std::string text =
-      number_text(lo) + (lo_open ? " < " : " <= ") + label + (hi_open ? " < " : " <= ") + number_text(hi);
-  if (min_magnitude > 0.0) text += ", |" + label + "| >= " + number_text(min_magnitude);
-  return text;
-}
 
 const std::vector<std::string>& light_type_names() {
   static const std::vector<std::string> names{"point", "directional", "spot", "environment"};
@@ -120,70 +76,58 @@ const std::vector<std::string>& shape_names() {
   return names;
 }
 
-std::vector<std::string> field_names(const std::vector<SceneField>& fields) {
-  std::vector<std::string> names;
-  for (const auto& f : fields) names.push_back(f.name);
-  return names;
+const ParamDecl& light_type_field() {
+  static const ParamDecl type =
+      field("type", ValueType::Enum,
+            "point, spot and directional as KHR_lights_punctual; environment: an equirectangular image")
+          .one_of(light_type_names());
+  return type;
 }
 
-const std::vector<SceneField>& camera_fields() {
-  static const std::vector<SceneField> fields{
+const ParamDecl& shape_field() {
+  static const ParamDecl shape =
+      field("shape", ValueType::Enum, "a built-in primitive (centred on the origin, y up) or a glTF mesh file")
+          .one_of(shape_names());
+  return shape;
+}
+
+const std::vector<ParamDecl>& camera_fields() {
+  static const std::vector<ParamDecl> fields{
       name_field("camera"),
-      point3("position", "where the camera is [scene units]", "[0.0, 0.0, 5.0]"),
-      point3("look_at", "the point the camera looks at; must differ from position", "[0.0, 0.0, 0.0]"),
-      point3("up", "the up direction; must not be parallel to the view direction", "[0.0, 1.0, 0.0]"),
-      SceneField{.name = "yfov",
-                 .type = SceneFieldType::Number,
-                 .doc = "vertical field of view [degrees]",
-                 .lo = 0.0,
-                 .hi = 180.0,
-                 .lo_open = true,
-                 .hi_open = true,
-                 .default_json = "40.0"},
-      SceneField{.name = "aspect",
-                 .type = SceneFieldType::Number,
-                 .doc = "width / height of the image",
-                 .lo = 0.0,
-                 .hi = 100.0,
-                 .lo_open = true,
-                 .default_json = "1.5"},
-      positive("znear", "distance to the near clipping plane [scene units]", "0.05"),
-      positive("zfar", "distance to the far clipping plane, greater than znear; none: infinite projection", ""),
+      point3("position", "where the camera is [scene units]", Vec3d{0.0, 0.0, 5.0}),
+      point3("look_at", "the point the camera looks at; must differ from position", Vec3d{0.0, 0.0, 0.0}),
+      point3("up", "the up direction; must not be parallel to the view direction", Vec3d{0.0, 1.0, 0.0}),
+      field("yfov", ValueType::Float, "vertical field of view [degrees]").above(0.0).below(180.0).or_default(40.0),
+      field("aspect", ValueType::Float, "width / height of the image").above(0.0).at_most(100.0).or_default(1.5),
+      positive("znear", "distance to the near clipping plane [scene units]").or_default(0.05),
+      positive("zfar", "distance to the far clipping plane, greater than znear; none: infinite projection").optional(),
   };
   return fields;
 }
 
-const std::vector<SceneField>& light_fields(LightType type) {
-  static const std::vector<SceneField> common{name_field("light"), light_type_field(), color_field()};
-  static const std::vector<SceneField> point =
+const std::vector<ParamDecl>& light_fields(LightType type) {
+  static const std::vector<ParamDecl> common{name_field("light"), light_type_field(), color_field()};
+  static const std::vector<ParamDecl> point =
       with(common, {intensity_field("luminous intensity [candela] (KHR_lights_punctual)"),
-                    point3("position", "where the light is [scene units]", "[0.0, 0.0, 0.0]"), range_field()});
-  static const std::vector<SceneField> directional =
+                    point3("position", "where the light is [scene units]", Vec3d{0.0, 0.0, 0.0}), range_field()});
+  static const std::vector<ParamDecl> directional =
       with(common, {intensity_field("illuminance [lux] (KHR_lights_punctual)"), direction_field()});
-  static const std::vector<SceneField> spot =
+  static const std::vector<ParamDecl> spot =
       with(common, {intensity_field("luminous intensity [candela] (KHR_lights_punctual)"),
-                    point3("position", "where the light is [scene units]", "[0.0, 0.0, 0.0]"), direction_field(),
-                    SceneField{.name = "inner_cone",
-                               .type = SceneFieldType::Number,
-                               .doc = "angle from the axis where the falloff starts [degrees], less than outer_cone",
-                               .lo = 0.0,
-                               .hi = 90.0,
-                               .hi_open = true,
-                               .default_json = "0.0"},
-                    SceneField{.name = "outer_cone",
-                               .type = SceneFieldType::Number,
-                               .doc = "angle from the axis where the light ends [degrees]",
-                               .lo = 0.0,
-                               .hi = 90.0,
-                               .lo_open = true,
-                               .default_json = "45.0"},
+                    point3("position", "where the light is [scene units]", Vec3d{0.0, 0.0, 0.0}), direction_field(),
+                    field("inner_cone", ValueType::Float,
+                          "angle from the axis where the falloff starts [degrees], less than outer_cone")
+                        .at_least(0.0)
+                        .below(90.0)
+                        .or_default(0.0),
+                    field("outer_cone", ValueType::Float, "angle from the axis where the light ends [degrees]")
+                        .above(0.0)
+                        .at_most(90.0)
+                        .or_default(45.0),
                     range_field()});
-  static const std::vector<SceneField> environment =
+  static const std::vector<ParamDecl> environment =
       with(common, {intensity_field("multiplier of the image's radiance"),
-                    SceneField{.name = "file",
-                               .type = SceneFieldType::Text,
-                               .doc = "an equirectangular image, relative to the scene file",
-                               .required = true}});
+                    field("file", ValueType::String, "an equirectangular image, relative to the scene file")});
   switch (type) {
     case LightType::Point: return point;
     case LightType::Directional: return directional;
@@ -193,33 +137,27 @@ const std::vector<SceneField>& light_fields(LightType type) {
   return point;
 }
 
-const std::vector<SceneField>& object_fields(ShapeType shape) {
-  static const std::vector<SceneField> sphere =
-      with(object_common(), {positive("radius", "radius [scene units]", "1.0"), segments_field()});
-  static const std::vector<SceneField> plane =
-      with(object_common(), {SceneField{.name = "size",
-                                        .type = SceneFieldType::Vec2,
-                                        .doc = "extent along x and z [scene units]; the plane faces +y",
-                                        .lo = 0.0,
-                                        .lo_open = true,
-                                        .default_json = "[1.0, 1.0]"}});
-  static const std::vector<SceneField> box =
-      with(object_common(), {SceneField{.name = "size",
-                                        .type = SceneFieldType::Vec3,
-                                        .doc = "extent along x, y and z [scene units]",
-                                        .lo = 0.0,
-                                        .lo_open = true,
-                                        .default_json = "[1.0, 1.0, 1.0]"}});
-  static const std::vector<SceneField> torus = with(
-      object_common(),
-      {positive("major_radius", "distance from the centre to the tube's centre [scene units]; the axis is y", "1.0"),
-       positive("minor_radius", "radius of the tube [scene units], less than major_radius", "0.25"), segments_field()});
-  static const std::vector<SceneField> mesh = with(
-      object_common(), {SceneField{.name = "file",
-                                   .type = SceneFieldType::Text,
-                                   .doc = "a .gltf or .glb file relative to the scene file: every triangle primitive "
-                                          "of its default scene, node transforms applied",
-                                   .required = true}});
+const std::vector<ParamDecl>& object_fields(ShapeType shape) {
+  static const std::vector<ParamDecl> sphere =
+      with(object_common(), {positive("radius", "radius [scene units]").or_default(1.0), segments_field()});
+  static const std::vector<ParamDecl> plane =
+      with(object_common(), {field("size", ValueType::Vec2, "extent along x and z [scene units]; the plane faces +y")
+                                 .above(0.0)
+                                 .or_default(Vec2d{1.0, 1.0})});
+  static const std::vector<ParamDecl> box =
+      with(object_common(), {field("size", ValueType::Vec3, "extent along x, y and z [scene units]")
+                                 .above(0.0)
+                                 .or_default(Vec3d{1.0, 1.0, 1.0})});
+  static const std::vector<ParamDecl> torus =
+      with(object_common(),
+           {positive("major_radius", "distance from the centre to the tube's centre [scene units]; the axis is y")
+                .or_default(1.0),
+            positive("minor_radius", "radius of the tube [scene units], less than major_radius").or_default(0.25),
+            segments_field()});
+  static const std::vector<ParamDecl> mesh =
+      with(object_common(), {field("file", ValueType::String,
+                                   "a .gltf or .glb file relative to the scene file: every triangle primitive of its "
+                                   "default scene, node transforms applied")});
   switch (shape) {
     case ShapeType::Sphere: return sphere;
     case ShapeType::Plane: return plane;
@@ -230,22 +168,19 @@ const std::vector<SceneField>& object_fields(ShapeType shape) {
   return sphere;
 }
 
-const std::vector<SceneField>& transform_fields() {
-  static const std::vector<SceneField> fields{
-      point3("translation", "offset [scene units]", "[0.0, 0.0, 0.0]"),
-      SceneField{.name = "rotation",
-                 .type = SceneFieldType::Quaternion,
-                 .doc = "unit quaternion [x, y, z, w] (glTF's order); not with rotation_deg",
-                 .default_json = "[0.0, 0.0, 0.0, 1.0]"},
-      SceneField{.name = "rotation_deg",
-                 .type = SceneFieldType::Vec3,
-                 .doc = "Euler angles [degrees] about x, then y, then z (fixed axes: R = Rz Ry Rx); not with rotation"},
-      SceneField{.name = "scale",
-                 .type = SceneFieldType::Vec3,
-                 .doc = "scale along the object's axes; negative mirrors; each magnitude at least 1e-6 and at "
-                        "most 1e6 times the smallest, so that the transform stays invertible in single precision",
-                 .min_magnitude = kMinScale,
-                 .default_json = "[1.0, 1.0, 1.0]"},
+const std::vector<ParamDecl>& transform_fields() {
+  static const std::vector<ParamDecl> fields{
+      point3("translation", "offset [scene units]", Vec3d{0.0, 0.0, 0.0}),
+      field("rotation", ValueType::Quaternion, "unit quaternion [x, y, z, w] (glTF's order); not with rotation_deg")
+          .or_default(Vec4d{0.0, 0.0, 0.0, 1.0}),
+      field("rotation_deg", ValueType::Vec3,
+            "Euler angles [degrees] about x, then y, then z (fixed axes: R = Rz Ry Rx); not with rotation")
+          .optional(),
+      field("scale", ValueType::Vec3,
+            "scale along the object's axes; negative mirrors; each magnitude at least 1e-6 and at most 1e6 times "
+            "the smallest, so that the transform stays invertible in single precision")
+          .magnitude_at_least(kMinScale)
+          .or_default(Vec3d{1.0, 1.0, 1.0}),
   };
   return fields;
 }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include "graph/json_values.h"
 #include "graph/limits.h"
@@ -17,34 +18,71 @@ namespace lamina {
 
 namespace {
 
-// The values of one JSON object that passed their field's checks, by field name.
-struct FieldValues {
-  std::map<std::string, std::vector<double>> numbers;
-  std::map<std::string, std::string> texts;
+// The values of one JSON object that passed their declaration's checks, by key; a key the object
+// leaves out has its declared default.
+class FieldValues {
+ public:
+  explicit FieldValues(const std::vector<ParamDecl>& fields) : fields_(fields) {}
 
-  bool has(const std::string& name) const { return numbers.count(name) || texts.count(name); }
-  double number(const std::string& name, double fallback) const {
-    auto it = numbers.find(name);
-    return it == numbers.end() ? fallback : it->second[0];
-  }
+  void set_numbers(const std::string& name, std::vector<double> numbers) { numbers_[name] = std::move(numbers); }
+  void set_text(const std::string& name, std::string text) { texts_[name] = std::move(text); }
+
+  bool has(const std::string& name) const { return numbers_.count(name) || texts_.count(name); }
+  double number(const std::string& name) const { return numbers(name)[0]; }
+  // For a key declared optional: none when the object leaves it out.
   std::optional<double> optional_number(const std::string& name) const {
-    auto it = numbers.find(name);
-    if (it == numbers.end()) return std::nullopt;
-    return it->second[0];
+    if (!has(name)) return std::nullopt;
+    return number(name);
   }
-  glm::dvec2 vec2(const std::string& name, glm::dvec2 fallback) const {
-    auto it = numbers.find(name);
-    return it == numbers.end() ? fallback : glm::dvec2(it->second[0], it->second[1]);
+  glm::dvec2 vec2(const std::string& name) const {
+    const auto v = numbers(name);
+    return {v[0], v[1]};
   }
-  glm::dvec3 vec3(const std::string& name, glm::dvec3 fallback) const {
-    auto it = numbers.find(name);
-    return it == numbers.end() ? fallback : glm::dvec3(it->second[0], it->second[1], it->second[2]);
+  glm::dvec3 vec3(const std::string& name) const {
+    const auto v = numbers(name);
+    return {v[0], v[1], v[2]};
   }
+  glm::dquat quaternion(const std::string& name) const {  // written [x, y, z, w]
+    const auto v = numbers(name);
+    return {v[3], v[0], v[1], v[2]};
+  }
+  // "" for a key left out with no default (the error of a required one is already reported).
   std::string text(const std::string& name) const {
-    auto it = texts.find(name);
-    return it == texts.end() ? std::string() : it->second;
+    if (auto it = texts_.find(name); it != texts_.end()) return it->second;
+    const Value* fallback = declared_default(name);
+    return fallback && std::holds_alternative<std::string>(*fallback) ? std::get<std::string>(*fallback) : "";
   }
+
+ private:
+  // The reader asks only for keys the object's declarations have: anything else is its own mistake.
+  const Value* declared_default(const std::string& name) const {
+    const ParamDecl* decl = find_param(fields_, name);
+    if (!decl) throw std::logic_error("the scene reader asks for '" + name + "', which is not declared here");
+    return decl->fallback ? &*decl->fallback : nullptr;
+  }
+
+  std::vector<double> numbers(const std::string& name) const {
+    if (auto it = numbers_.find(name); it != numbers_.end()) return it->second;
+    const Value* fallback = declared_default(name);
+    std::vector<double> numbers = fallback ? value_numbers(*fallback) : std::vector<double>();
+    if (numbers.empty())
+      throw std::logic_error("the scene reader asks for the number '" + name + "', which has no default");
+    return numbers;
+  }
+
+  const std::vector<ParamDecl>& fields_;
+  std::map<std::string, std::vector<double>> numbers_;
+  std::map<std::string, std::string> texts_;
 };
+
+// How many numbers an array-valued key holds.
+size_t array_size(ValueType type) {
+  switch (type) {
+    case ValueType::Vec2: return 2;
+    case ValueType::Quaternion: return 4;
+    default: return 3;
+  }
+}
 
 std::string single_quoted(const std::string& s) { return quote_excerpt(s, '\''); }
 
@@ -165,16 +203,34 @@ class SceneReader {
     }
   }
 
+  // The kind a discriminating key names (a light's "type", an object's "shape") as an index into
+  // its choices; none after an error.
+  std::optional<size_t> read_kind(const Json& j, const std::string& pointer, const ParamDecl& key,
+                                  const std::string& owner) {
+    auto it = j.find(key.name);
+    if (it == j.end()) {
+      error(pointer, "missing \"" + key.name + "\" of " + owner,
+            "valid " + key.name + "s: " + join_alternatives(key.choices));
+      return std::nullopt;
+    }
+    const std::vector<ParamDecl> only{key};
+    FieldValues probe(only);
+    read_field(key, *it, pointer_append(pointer, key.name), probe);
+    if (!probe.has(key.name)) return std::nullopt;
+    return static_cast<size_t>(std::find(key.choices.begin(), key.choices.end(), probe.text(key.name)) -
+                               key.choices.begin());
+  }
+
   // Checks keys, types, ranges and required fields of `j` against `fields`; returns whether all
   // passed. Nested objects (the transform) are left to the caller.
-  bool read_fields(const Json& j, const std::string& pointer, const std::vector<SceneField>& fields,
+  bool read_fields(const Json& j, const std::string& pointer, const std::vector<ParamDecl>& fields,
                    const std::string& owner, FieldValues& out) {
     size_t errors_before = diag_.errors().size();
-    check_known_keys(j, file_, pointer, field_names(fields), diag_);
+    check_known_keys(j, file_, pointer, param_names(fields), diag_);
     for (const auto& f : fields) {
       auto it = j.find(f.name);
       if (it == j.end()) {
-        if (f.required) error(pointer, "missing \"" + f.name + "\" of " + owner, f.doc);
+        if (f.required()) error(pointer, "missing \"" + f.name + "\" of " + owner, f.doc);
         continue;
       }
       read_field(f, *it, pointer_append(pointer, f.name), out);
@@ -182,43 +238,38 @@ class SceneReader {
     return diag_.errors().size() == errors_before;
   }
 
-  bool check_number(const SceneField& f, double v, const std::string& pointer, const std::string& label) {
+  bool check_number(const ParamDecl& f, double v, const std::string& pointer, const std::string& label) {
     if (!std::isfinite(v)) {
       error(pointer, label + " is not a finite number", "JSON numbers beyond 1.8e308 overflow to infinity");
       return false;
     }
-    bool below = f.lo_open ? !(v > f.lo) : v < f.lo;
-    bool above = f.hi_open ? !(v < f.hi) : v > f.hi;
-    if (below || above || std::abs(v) < f.min_magnitude) {
+    if (!f.in_range(v)) {
       error(pointer, label + " = " + number_text(v) + " is out of range: expected " + f.range_text(label), f.doc);
       return false;
     }
     return true;
   }
 
-  void read_field(const SceneField& f, const Json& j, const std::string& pointer, FieldValues& out) {
+  void read_field(const ParamDecl& f, const Json& j, const std::string& pointer, FieldValues& out) {
     auto expected = [&](const std::string& what) {
       error(pointer, "expected " + what + ", found " + json_describe(j), f.doc);
     };
     switch (f.type) {
-      case SceneFieldType::Number:
-      case SceneFieldType::Integer: {
-        if (!j.is_number()) return expected(f.type == SceneFieldType::Integer ? "a whole number" : "a number");
+      case ValueType::Float:
+      case ValueType::Integer: {
+        if (!j.is_number()) return expected(f.expected_text());
         double v = j.get<double>();
-        if (f.type == SceneFieldType::Integer && v != std::floor(v))
+        if (f.type == ValueType::Integer && v != std::floor(v))
           return error(pointer, f.name + " = " + number_text(v) + " is not a whole number", f.doc);
-        if (check_number(f, v, pointer, f.name)) out.numbers[f.name] = {v};
+        if (check_number(f, v, pointer, f.name)) out.set_numbers(f.name, {v});
         return;
       }
-      case SceneFieldType::Vec2:
-      case SceneFieldType::Vec3:
-      case SceneFieldType::Color:
-      case SceneFieldType::Quaternion: {
-        size_t size = f.components();
-        std::string shape = f.type == SceneFieldType::Color        ? "an RGB colour [r, g, b]"
-                            : f.type == SceneFieldType::Quaternion ? "a quaternion [x, y, z, w]"
-                            : size == 3                            ? "an array [x, y, z]"
-                                                                   : "an array of 2 numbers";
+      case ValueType::Vec2:
+      case ValueType::Vec3:
+      case ValueType::Color:
+      case ValueType::Quaternion: {
+        const size_t size = array_size(f.type);
+        const std::string shape = f.expected_text();
         if (!j.is_array()) return expected(shape);
         if (j.size() != size)
           return error(pointer,
@@ -237,11 +288,11 @@ class SceneReader {
           v[i] = j[i].get<double>();
           ok = check_number(f, v[i], at, f.name + "[" + std::to_string(i) + "]") && ok;
         }
-        if (ok) out.numbers[f.name] = v;
+        if (ok) out.set_numbers(f.name, std::move(v));
         return;
       }
-      case SceneFieldType::Text: {
-        if (!j.is_string()) return expected("a string");
+      case ValueType::String: {
+        if (!j.is_string()) return expected(f.expected_text());
         const auto text = j.get<std::string>();
         if (text.empty()) return error(pointer, "expected a non-empty string", f.doc);
         // Code points: every byte but UTF-8's continuation bytes starts one.
@@ -252,11 +303,11 @@ class SceneReader {
               pointer,
               f.name + " has " + std::to_string(length) + " characters, more than " + std::to_string(f.max_length),
               f.doc);
-        out.texts[f.name] = text;
+        out.set_text(f.name, text);
         return;
       }
-      case SceneFieldType::Choice: {
-        if (!j.is_string()) return expected("one of " + join_alternatives(f.choices));
+      case ValueType::Enum: {
+        if (!j.is_string()) return expected(f.expected_text());
         auto text = j.get<std::string>();
         if (std::find(f.choices.begin(), f.choices.end(), text) == f.choices.end()) {
           std::string suggestion = closest_match(text, f.choices);
@@ -264,12 +315,16 @@ class SceneReader {
                        (suggestion.empty() ? std::string() : "did you mean \"" + suggestion + "\"? ") +
                            "valid values: " + join_alternatives(f.choices));
         }
-        out.texts[f.name] = text;
+        out.set_text(f.name, text);
         return;
       }
-      case SceneFieldType::Object:
-        if (!j.is_object()) expected("an object");
+      case ValueType::Object:
+        if (!j.is_object()) expected(f.expected_text());
         return;
+      case ValueType::Bool:
+      case ValueType::Interface:
+      case ValueType::Medium:
+      case ValueType::Stack: throw std::logic_error("scene key " + f.name + " has a type scene files do not use");
     }
   }
 
@@ -343,16 +398,16 @@ class SceneReader {
   }
 
   std::optional<Camera> read_camera(const Json& j, const std::string& pointer) {
-    FieldValues v;
+    FieldValues v(camera_fields());
     if (!read_fields(j, pointer, camera_fields(), "a camera", v)) return std::nullopt;
     Camera c;
     c.name = v.text("name");
-    c.position = v.vec3("position", c.position);
-    c.look_at = v.vec3("look_at", c.look_at);
-    c.up = v.vec3("up", c.up);
-    c.yfov_deg = v.number("yfov", c.yfov_deg);
-    c.aspect = v.number("aspect", c.aspect);
-    c.znear = v.number("znear", c.znear);
+    c.position = v.vec3("position");
+    c.look_at = v.vec3("look_at");
+    c.up = v.vec3("up");
+    c.yfov_deg = v.number("yfov");
+    c.aspect = v.number("aspect");
+    c.znear = v.number("znear");
     c.zfar = v.optional_number("zfar");
     bool ok = true;
     if (const double distance = glm::length(c.look_at - c.position); !(distance >= 1e-9)) {
@@ -381,29 +436,28 @@ class SceneReader {
   }
 
   std::optional<Light> read_light(const Json& j, const std::string& pointer) {
-    auto type = j.find("type");
-    FieldValues probe;
-    if (type == j.end()) {
-      error(pointer, "missing \"type\" of a light", "valid types: " + join_alternatives(light_type_names()));
-      return std::nullopt;
-    }
-    read_field(light_fields(LightType::Point)[1], *type, pointer + "/type", probe);
-    if (!probe.has("type")) return std::nullopt;
-    const auto& names = light_type_names();
-    auto t = static_cast<LightType>(std::find(names.begin(), names.end(), probe.text("type")) - names.begin());
-    FieldValues v;
-    if (!read_fields(j, pointer, light_fields(t), "a " + probe.text("type") + " light", v)) return std::nullopt;
+    const auto kind = read_kind(j, pointer, light_type_field(), "a light");
+    if (!kind) return std::nullopt;
+    const auto t = static_cast<LightType>(*kind);
+    const auto& fields = light_fields(t);
+    FieldValues v(fields);
+    if (!read_fields(j, pointer, fields, "a " + light_type_names()[*kind] + " light", v)) return std::nullopt;
+    // What the type does not declare keeps the initialisers of Light, unused.
     Light l;
     l.name = v.text("name");
     l.type = t;
-    l.color = v.vec3("color", l.color);
-    l.intensity = v.number("intensity", l.intensity);
-    l.position = v.vec3("position", l.position);
-    l.range = v.optional_number("range");
-    l.inner_cone_deg = v.number("inner_cone", l.inner_cone_deg);
-    l.outer_cone_deg = v.number("outer_cone", l.outer_cone_deg);
+    l.color = v.vec3("color");
+    l.intensity = v.number("intensity");
+    if (t == LightType::Point || t == LightType::Spot) {
+      l.position = v.vec3("position");
+      l.range = v.optional_number("range");
+    }
+    if (t == LightType::Spot) {
+      l.inner_cone_deg = v.number("inner_cone");
+      l.outer_cone_deg = v.number("outer_cone");
+    }
     if (t == LightType::Directional || t == LightType::Spot) {
-      auto d = direction(v.vec3("direction", l.direction), pointer + "/direction", "direction");
+      auto d = direction(v.vec3("direction"), pointer + "/direction", "direction");
       if (!d) return std::nullopt;
       l.direction = *d;
     }
@@ -436,11 +490,11 @@ class SceneReader {
   }
 
   std::optional<Transform> read_transform(const Json& j, const std::string& pointer) {
-    FieldValues v;
+    FieldValues v(transform_fields());
     if (!read_fields(j, pointer, transform_fields(), "a transform", v)) return std::nullopt;
     Transform t;
-    t.translation = v.vec3("translation", t.translation);
-    t.scale = v.vec3("scale", t.scale);
+    t.translation = v.vec3("translation");
+    t.scale = v.vec3("scale");
     const glm::dvec3 magnitude = glm::abs(t.scale);
     const double smallest = glm::min(magnitude.x, glm::min(magnitude.y, magnitude.z));
     const double largest = glm::max(magnitude.x, glm::max(magnitude.y, magnitude.z));
@@ -459,9 +513,13 @@ class SceneReader {
             "they describe the same rotation");
       return std::nullopt;
     }
-    if (v.has("rotation")) {
-      const auto& q = v.numbers.at("rotation");
-      glm::dquat rotation(q[3], q[0], q[1], q[2]);
+    if (v.has("rotation_deg")) {
+      glm::dvec3 a = glm::radians(v.vec3("rotation_deg"));
+      // Fixed axes x, then y, then z: R = Rz Ry Rx.
+      t.rotation = glm::angleAxis(a.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) *
+                   glm::angleAxis(a.x, glm::dvec3(1, 0, 0));
+    } else {
+      const glm::dquat rotation = v.quaternion("rotation");
       double length = glm::length(rotation);
       if (!(length > 1e-12)) {
         error(pointer + "/rotation",
@@ -476,41 +534,41 @@ class SceneReader {
                       "the quaternion has length " + number_text(length) + ", not 1: it is normalised",
                       "write a unit quaternion [x, y, z, w]");
       t.rotation = rotation / length;
-    } else if (v.has("rotation_deg")) {
-      glm::dvec3 a = glm::radians(v.vec3("rotation_deg", glm::dvec3(0.0)));
-      // Fixed axes x, then y, then z: R = Rz Ry Rx.
-      t.rotation = glm::angleAxis(a.z, glm::dvec3(0, 0, 1)) * glm::angleAxis(a.y, glm::dvec3(0, 1, 0)) *
-                   glm::angleAxis(a.x, glm::dvec3(1, 0, 0));
     }
     return t;
   }
 
   std::optional<SceneObject> read_object(const Json& j, const std::string& pointer) {
-    auto shape = j.find("shape");
-    if (shape == j.end()) {
-      error(pointer, "missing \"shape\" of an object", "valid shapes: " + join_alternatives(shape_names()));
-      return std::nullopt;
-    }
-    FieldValues probe;
-    read_field(object_fields(ShapeType::Sphere)[1], *shape, pointer + "/shape", probe);
-    if (!probe.has("shape")) return std::nullopt;
-    const auto& names = shape_names();
-    auto s = static_cast<ShapeType>(std::find(names.begin(), names.end(), probe.text("shape")) - names.begin());
-    FieldValues v;
-    bool ok = read_fields(j, pointer, object_fields(s), "a " + probe.text("shape"), v);
+    const auto kind = read_kind(j, pointer, shape_field(), "an object");
+    if (!kind) return std::nullopt;
+    const auto s = static_cast<ShapeType>(*kind);
+    const auto& fields = object_fields(s);
+    FieldValues v(fields);
+    bool ok = read_fields(j, pointer, fields, "a " + shape_names()[*kind], v);
+    // What the shape does not declare keeps the initialisers of SceneObject, unused.
     SceneObject o;
     o.name = v.text("name");
     o.shape = s;
     o.material = v.text("material");
     o.label = v.text("label");
-    o.radius = v.number("radius", o.radius);
-    o.major_radius = v.number("major_radius", o.major_radius);
-    o.minor_radius = v.number("minor_radius", o.minor_radius);
-    o.segments = static_cast<int>(v.number("segments", o.segments));
-    if (s == ShapeType::Plane) o.plane_size = v.vec2("size", o.plane_size);
-    if (s == ShapeType::Box) o.box_size = v.vec3("size", o.box_size);
-    if (auto t = j.find("transform"); t != j.end() && t->is_object()) {
-      auto transform = read_transform(*t, pointer + "/transform");
+    switch (s) {
+      case ShapeType::Sphere:
+        o.radius = v.number("radius");
+        o.segments = static_cast<int>(v.number("segments"));
+        break;
+      case ShapeType::Plane: o.plane_size = v.vec2("size"); break;
+      case ShapeType::Box: o.box_size = v.vec3("size"); break;
+      case ShapeType::Torus:
+        o.major_radius = v.number("major_radius");
+        o.minor_radius = v.number("minor_radius");
+        o.segments = static_cast<int>(v.number("segments"));
+        break;
+      case ShapeType::Mesh: break;  // its file is read below
+    }
+    // Left out, the transform is read as an empty one: every key at its declared default.
+    static const Json kDefaultTransform = Json::object();
+    if (auto t = j.find("transform"); t == j.end() || t->is_object()) {
+      auto transform = read_transform(t == j.end() ? kDefaultTransform : *t, pointer + "/transform");
       if (transform)
         o.transform = *transform;
       else

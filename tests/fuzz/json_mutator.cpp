@@ -265,8 +265,8 @@ Vocabulary material_vocabulary() {
 Vocabulary scene_vocabulary() {
   Vocabulary v;
   v.keys = {"$schema", "format", "materials", "cameras", "lights", "objects", "transform"};
-  auto add_fields = [&](const std::vector<SceneField>& fields) {
-    for (const SceneField& f : fields) {
+  auto add_fields = [&](const std::vector<ParamDecl>& fields) {
+    for (const ParamDecl& f : fields) {
       v.keys.push_back(f.name);
       for (double bound : {f.lo, f.hi})
         if (std::isfinite(bound)) v.numbers.push_back(bound);

@@ -40,6 +40,12 @@ TEST_CASE("every declaration is complete and its defaults obey its own ranges") 
       CHECK(names.insert(p.name).second);
       CHECK_FALSE(p.doc.empty());
       CHECK((p.lo < p.hi || !p.has_range()));
+      // Whole numbers, quaternions, nested objects and text lengths are scene-file declarations:
+      // the material reader has no case for them.
+      CHECK(p.type != ValueType::Integer);
+      CHECK(p.type != ValueType::Quaternion);
+      CHECK(p.type != ValueType::Object);
+      CHECK(p.max_length == 0);
       if (p.type == ValueType::Enum) {
         CHECK_FALSE(p.choices.empty());
         if (p.fallback)
