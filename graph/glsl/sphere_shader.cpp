@@ -44,11 +44,12 @@ void main() {
     // The sky once per pixel, at its first subsample on the sphere.
     if (lamina_ambient_radiance != vec3(0.0f) && !have_sky) {
       vec3 weights = vec3(0.0f);
+      vec3 sky_view = lamina_preview_sky_view(wo);
       for (int i = 0; i < LAMINA_PREVIEW_SKY_POINTS; ++i) {
         vec3 p = lamina_preview_sky_point(i);
         vec3 w;
         float pdf;
-        vec3 f = NAME_sample(wo, p.xy, p.z, uv, w, pdf);
+        vec3 f = NAME_sample(sky_view, p.xy, p.z, uv, w, pdf);
         weights += lamina_preview_sky_weight(f, w, pdf);
       }
       sky = lamina_preview_sky(weights, lamina_ambient_radiance);

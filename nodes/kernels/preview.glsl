@@ -8,8 +8,8 @@
 // mean of LAMINA_PREVIEW_SUBSAMPLES^2 subsamples (lamina_preview_subsample, in that order); one off
 // the sphere shows the background, one on it lamina_preview_display(light + sky), where light is
 // lamina_preview_light of eval(wi, wo, uv) and sky is lamina_preview_sky of the weights of the
-// LAMINA_PREVIEW_SKY_POINTS directions sample(wo, u, u_lobe, uv) draws from lamina_preview_sky_point,
-// taken once per pixel, at its first subsample on the sphere.
+// LAMINA_PREVIEW_SKY_POINTS directions sample(lamina_preview_sky_view(wo), u, u_lobe, uv) draws from
+// lamina_preview_sky_point, taken once per pixel, at its first subsample on the sphere.
 
 // Subsamples per pixel along each axis.
 const int LAMINA_PREVIEW_SUBSAMPLES = 4;
@@ -85,6 +85,13 @@ LAMINA_FN vec3 lamina_preview_sky_point(int i) {
   return vec3(fract(0.5f + x * 0.754877666f), fract(0.5f + x * 0.569840291f),
                (x + 0.5f) / float(LAMINA_PREVIEW_SKY_POINTS));
 }
+
+// The view direction the sky is estimated at: wo turned about the normal to azimuth 0. A material
+// whose every lobe is isotropic (all of lamina's, while no entry's normal is tilted) reflects the sky
+// the same for both; turned, the fixed points meet every wo of one cos(theta_o) alike, so the
+// estimate depends on cos(theta_o) and uv alone, and a renderer may tabulate it over cos(theta_o)
+// for a material without textures (graph/cpu/preview.cpp does).
+LAMINA_FN vec3 lamina_preview_sky_view(vec3 wo) { return vec3(sqrt(wo.x * wo.x + wo.y * wo.y), 0.0f, wo.z); }
 
 // One sky point's estimate of the directional albedo, f cos_i / pdf of the direction wi that sample()
 // drew with density pdf and returned f for; 0 when it drew none.
