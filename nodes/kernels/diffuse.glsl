@@ -25,6 +25,10 @@ LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   // cos(phi_i - phi_o) from the projections onto the tangent plane; 0 when either is the normal.
   float proj = lamina_safe_sqrt(wi.x * wi.x + wi.y * wi.y) * lamina_safe_sqrt(wo.x * wo.x + wo.y * wo.y);
   float cos_phi = proj > 0.0f ? clamp((wi.x * wo.x + wi.y * wo.y) / proj, -1.0f, 1.0f) : 0.0f;
+  // 1 - |cos_phi| as sin^2 / (1 + |cos_phi|): near cos_phi = +-1 the subtraction loses its digits,
+  // which tan((alpha + beta) / 2) multiplies by up to 1e4 at grazing. 1 when either is the normal.
+  float sin_phi = proj > 0.0f ? (wi.x * wo.y - wi.y * wo.x) / proj : 0.0f;
+  float one_minus_abs_cos_phi = proj > 0.0f ? sin_phi * sin_phi / (1.0f + abs(cos_phi)) : 1.0f;
 
   float s2 = sigma * sigma;
   float two_beta_over_pi = 2.0f * beta * LAMINA_INV_PI;
@@ -33,13 +37,18 @@ LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   // C2 = 0.45 s2 / (s2 + 0.09) sin(alpha)                        if cos_phi >= 0,
   //      0.45 s2 / (s2 + 0.09) (sin(alpha) - (2 beta / pi)^3)    otherwise,
   // C3 = 0.125 s2 / (s2 + 0.09) (4 alpha beta / pi^2)^2.
+  // Near grazing (beta -> pi/2) sin(alpha) - (2 beta / pi)^3 is a difference of two numbers near 1,
+  // which tan(beta) then multiplies by up to 1e4: the same difference, written with
+  // x = 1 - 2 beta / pi = (2 / pi) atan(cos beta, sin beta) and 1 - sin(alpha) = cos^2(alpha) / (1 + sin(alpha)),
+  // is x (3 - 3x + x^2) - cos^2(alpha) / (1 + sin(alpha)), and keeps its digits.
+  float x = 2.0f * LAMINA_INV_PI * atan(cos_beta, sin_beta);
+  float opposite = x * (3.0f - 3.0f * x + x * x) - cos_alpha * cos_alpha / (1.0f + sin_alpha);
   float c1 = 1.0f - 0.5f * s2 / (s2 + 0.33f);
-  float c2 = 0.45f * s2 / (s2 + 0.09f) *
-             (cos_phi >= 0.0f ? sin_alpha : sin_alpha - two_beta_over_pi * two_beta_over_pi * two_beta_over_pi);
+  float c2 = 0.45f * s2 / (s2 + 0.09f) * (cos_phi >= 0.0f ? sin_alpha : opposite);
   float c3 = 0.125f * s2 / (s2 + 0.09f) * lamina_sqr(4.0f * alpha * beta * LAMINA_INV_PI * LAMINA_INV_PI);
   // Same section: L1 / cos_i = albedo (C1 + cos_phi C2 tan(beta) + (1 - |cos_phi|) C3 tan((alpha + beta) / 2)),
   // L2 / cos_i = albedo^2 0.17 s2 / (s2 + 0.13) (1 - cos_phi (2 beta / pi)^2).
-  vec3 direct = albedo * (c1 + cos_phi * c2 * tan_beta + (1.0f - abs(cos_phi)) * c3 * tan_half_sum);
+  vec3 direct = albedo * (c1 + cos_phi * c2 * tan_beta + one_minus_abs_cos_phi * c3 * tan_half_sum);
   vec3 interreflected =
       albedo * albedo * (0.17f * s2 / (s2 + 0.13f) * (1.0f - cos_phi * two_beta_over_pi * two_beta_over_pi));
   return max(direct + interreflected, vec3(0.0f)) * LAMINA_INV_PI;

@@ -463,6 +463,30 @@ TEST_CASE("kernels: lambert is albedo / pi and oren_nayar follows the course's s
              0.020452373318850022);
 }
 
+TEST_CASE("kernels: oren_nayar keeps its digits at grazing directions on opposite sides of the normal") {
+  // The course's formula (as in the test above) in double precision, at the float directions' own
+  // angles: there sin(alpha) - (2 beta / pi)^3 cancels and tan(beta) multiplies it by up to 6000.
+  auto course = [](vec3 wi, vec3 wo, double albedo, double sigma) {
+    const double ti = std::acos(double(wi.z)), tr = std::acos(double(wo.z));
+    const double cp = (double(wi.x) * wo.x + double(wi.y) * wo.y) /
+                      (std::hypot(double(wi.x), double(wi.y)) * std::hypot(double(wo.x), double(wo.y)));
+    const double a = std::max(ti, tr), b = std::min(ti, tr), s2 = sigma * sigma;
+    const double c1 = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    const double c2 = 0.45 * s2 / (s2 + 0.09) * (cp >= 0.0 ? std::sin(a) : std::sin(a) - std::pow(2.0 * b / kPi, 3.0));
+    const double c3 = 0.125 * s2 / (s2 + 0.09) * std::pow(4.0 * a * b / (kPi * kPi), 2.0);
+    const double direct = albedo * (c1 + cp * c2 * std::tan(b) + (1.0 - std::abs(cp)) * c3 * std::tan((a + b) / 2.0));
+    const double inter = albedo * albedo * 0.17 * s2 / (s2 + 0.13) * (1.0 - cp * 4.0 * b * b / (kPi * kPi));
+    return std::max(direct + inter, 0.0) / kPi;
+  };
+  for (double theta : {80.0, 89.0, 89.9, 89.99})
+    for (float sigma : {0.27f, 0.5f}) {
+      CAPTURE(theta);
+      CAPTURE(sigma);
+      const vec3 wi = direction(theta, 0.0), wo = direction(theta - 0.004, 180.0);
+      CHECK(double(k::oren_nayar(wi, wo, vec3(0.4f), sigma).x) == rel(course(wi, wo, 0.4, double(sigma)), 1e-5));
+    }
+}
+
 TEST_CASE("kernels: oren_nayar with sigma 0 is exactly lambert, and it is symmetric and non-negative") {
   Uniform u(99);
   for (int i = 0; i < 2000; ++i) {
