@@ -3,6 +3,8 @@
 // and mixes over every substrate, with every distribution and Fresnel term, both roughness forms,
 // and some parameters driven by textures (a checker, remapped into the parameter's range). The
 // checker must accept every file it writes; a refusal is a generator bug the caller reports.
+// Every random draw is a statement of its own: the operands of + are evaluated in an order each
+// compiler chooses, so one expression with two draws would give GCC and clang different stacks.
 #pragma once
 
 #include <cstdint>
@@ -64,7 +66,9 @@ class RandomStacks {
 
   std::string interface() {
     const std::string id = fresh("iface");
-    node(id, R"("type": "interface/dielectric", "ior": )" + scalar(1.0, 2.4) + ", " + roughness() + microfacet());
+    const std::string ior = scalar(1.0, 2.4);
+    const std::string slope = roughness();
+    node(id, R"("type": "interface/dielectric", "ior": )" + ior + ", " + slope + microfacet());
     return id;
   }
 
@@ -76,8 +80,8 @@ class RandomStacks {
     if (u < 0.5) {
       node(id, R"("type": "medium/clear")");
     } else {
-      node(id, R"("type": "medium/absorbing", "thickness": )" + scalar(0.0, 40.0) + R"(, "absorption": )" +
-                   colour(0.0, 1.5));
+      const std::string thickness = scalar(0.0, 40.0);
+      node(id, R"("type": "medium/absorbing", "thickness": )" + thickness + R"(, "absorption": )" + colour(0.0, 1.5));
     }
     return id;
   }
@@ -88,14 +92,18 @@ class RandomStacks {
     if (u < 0.3) {
       node(id, R"("type": "substrate/lambert", "albedo": )" + albedo());
     } else if (u < 0.55) {
-      node(id, R"("type": "substrate/oren_nayar", "albedo": )" + albedo() + R"(, "sigma": )" + scalar(0.0, 1.2));
+      const std::string a = albedo();
+      node(id, R"("type": "substrate/oren_nayar", "albedo": )" + a + R"(, "sigma": )" + scalar(0.0, 1.2));
     } else if (u < 0.75) {
       static const char* metals[] = {"aluminium", "chromium", "copper", "gold", "silver"};
-      node(id, R"("type": "substrate/conductor", "metal": ")" + std::string(metals[pick(5)]) + "\", " + roughness() +
-                   microfacet());
+      const std::string metal = metals[pick(5)];
+      const std::string slope = roughness();
+      node(id, R"("type": "substrate/conductor", "metal": ")" + metal + "\", " + slope + microfacet());
     } else {
-      node(id, R"("type": "substrate/conductor", "n": )" + colour(0.1, 3.0) + R"(, "k": )" + colour(0.0, 8.0) + ", " +
-                   roughness() + microfacet());
+      const std::string n = colour(0.1, 3.0);
+      const std::string k = colour(0.0, 8.0);
+      const std::string slope = roughness();
+      node(id, R"("type": "substrate/conductor", "n": )" + n + R"(, "k": )" + k + ", " + slope + microfacet());
     }
     return id;
   }
@@ -109,8 +117,9 @@ class RandomStacks {
   std::string microfacet() {
     static const char* distributions[] = {"beckmann", "blinn", "ggx"};
     static const char* fresnels[] = {"exact", "schlick", "lazanyi"};
-    return R"(, "distribution": ")" + std::string(distributions[pick(3)]) + R"(", "fresnel": ")" +
-           std::string(fresnels[pick(3)]) + "\"";
+    const std::string distribution = distributions[pick(3)];
+    const std::string fresnel = fresnels[pick(3)];
+    return R"(, "distribution": ")" + distribution + R"(", "fresnel": ")" + fresnel + "\"";
   }
 
   // A float in [lo, hi]: a constant, or one time in five a checker's value remapped into a random
@@ -133,13 +142,20 @@ class RandomStacks {
 
   std::string checker() {
     const std::string id = fresh("checker");
-    node(id, R"("type": "texture/checker", "color_a": )" + colour(0.0, 1.0) + R"(, "color_b": )" + colour(0.0, 1.0) +
-                 R"(, "scale": [)" + number(uniform(1.0, 9.0)) + ", " + number(uniform(1.0, 9.0)) + "]");
+    const std::string a = colour(0.0, 1.0);
+    const std::string b = colour(0.0, 1.0);
+    const double su = uniform(1.0, 9.0);
+    const double sv = uniform(1.0, 9.0);
+    node(id, R"("type": "texture/checker", "color_a": )" + a + R"(, "color_b": )" + b + R"(, "scale": [)" + number(su) +
+                 ", " + number(sv) + "]");
     return id;
   }
 
   std::string colour(double lo, double hi) {
-    return "[" + number(uniform(lo, hi)) + ", " + number(uniform(lo, hi)) + ", " + number(uniform(lo, hi)) + "]";
+    const double r = uniform(lo, hi);
+    const double g = uniform(lo, hi);
+    const double b = uniform(lo, hi);
+    return "[" + number(r) + ", " + number(g) + ", " + number(b) + "]";
   }
 
   void node(const std::string& id, const std::string& body) {

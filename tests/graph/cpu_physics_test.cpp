@@ -1193,7 +1193,9 @@ TranscriptionStats compare_with_transcription(const Example& example, const Stac
   std::mt19937_64 rng(0x5eed0008);
   TranscriptionStats stats;
   stats.pairs = pairs;
-  double m_top = std::max(stack.coats.front().facet.m, 1.0e-3);
+  // The slope of the top lobe: the first coat's, or a bare substrate's own (0 for a diffuse one).
+  const Facet& top = stack.coats.empty() ? stack.base.facet : stack.coats.front().facet;
+  double m_top = std::max(top.m, 1.0e-3);
   for (int i = 0; i < pairs; ++i) {
     dvec3 wo_d = upper_direction(rng, nullptr, 0.0, 0.0, 0.0);
     dvec3 wi_d = upper_direction(rng, &wo_d, 0.4, 0.1 * m_top, std::min(30.0 * m_top, 0.5));
