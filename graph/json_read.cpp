@@ -335,7 +335,7 @@ class Reader {
       case ValueType::Color:
       case ValueType::Vec3:
       case ValueType::Vec2: {
-        size_t size = p.type == ValueType::Vec2 ? 2 : 3;
+        const size_t size = size_t(value_components(p.type));
         const std::string shape = p.expected_text();
         if (!j.is_array() || j.size() != size) {
           if (j.is_array())

@@ -64,10 +64,10 @@ Json param_schema(const ParamDecl& p) {
   switch (p.type) {
     case ValueType::Float:
     case ValueType::Integer: s = number_schema(p); break;
-    case ValueType::Vec2: s = array_schema(p, 2); break;
+    case ValueType::Vec2:
     case ValueType::Color:
-    case ValueType::Vec3: s = array_schema(p, 3); break;
-    case ValueType::Quaternion: s = array_schema(p, 4); break;
+    case ValueType::Vec3:
+    case ValueType::Quaternion: s = array_schema(p, size_t(value_components(p.type))); break;
     case ValueType::Bool: s = Json{{"type", "boolean"}}; break;
     case ValueType::Enum: s = Json{{"enum", p.choices}}; break;
     case ValueType::String:

@@ -39,10 +39,12 @@ std::string_view type_name(ValueType type) {
 
 int value_components(ValueType type) {
   switch (type) {
-    case ValueType::Float: return 1;
+    case ValueType::Float:
+    case ValueType::Integer: return 1;
     case ValueType::Vec2: return 2;
     case ValueType::Color:
     case ValueType::Vec3: return 3;
+    case ValueType::Quaternion: return 4;
     default: return 0;
   }
 }

@@ -31,8 +31,8 @@ enum class ValueType {
 
 std::string_view type_name(ValueType type);
 bool is_closure(ValueType type);
-// How many floats a value of the type takes in a texture register: 1 to 3 for the numeric types,
-// 0 for the others.
+// How many numbers a value of the type holds: 1 for a number (a float in a texture register, 1 to
+// 3 for the node types), 2 to 4 for the arrays; 0 for the others.
 int value_components(ValueType type);
 
 // A reference to another node's output, written "@node" or "@node.output" in JSON.

@@ -28,6 +28,8 @@ class FieldValues {
   void set_text(const std::string& name, std::string text) { texts_[name] = std::move(text); }
 
   bool has(const std::string& name) const { return numbers_.count(name) || texts_.count(name); }
+  // Whether the object's declarations have the key at all (a point light has no cone).
+  bool declares(const std::string& name) const { return find_param(fields_, name) != nullptr; }
   double number(const std::string& name) const { return numbers(name)[0]; }
   // For a key declared optional: none when the object leaves it out.
   std::optional<double> optional_number(const std::string& name) const {
@@ -74,15 +76,6 @@ class FieldValues {
   std::map<std::string, std::vector<double>> numbers_;
   std::map<std::string, std::string> texts_;
 };
-
-// How many numbers an array-valued key holds.
-size_t array_size(ValueType type) {
-  switch (type) {
-    case ValueType::Vec2: return 2;
-    case ValueType::Quaternion: return 4;
-    default: return 3;
-  }
-}
 
 std::string single_quoted(const std::string& s) { return quote_excerpt(s, '\''); }
 
@@ -268,7 +261,7 @@ class SceneReader {
       case ValueType::Vec3:
       case ValueType::Color:
       case ValueType::Quaternion: {
-        const size_t size = array_size(f.type);
+        const size_t size = size_t(value_components(f.type));
         const std::string shape = f.expected_text();
         if (!j.is_array()) return expected(shape);
         if (j.size() != size)
@@ -448,15 +441,11 @@ class SceneReader {
     l.type = t;
     l.color = v.vec3("color");
     l.intensity = v.number("intensity");
-    if (t == LightType::Point || t == LightType::Spot) {
-      l.position = v.vec3("position");
-      l.range = v.optional_number("range");
-    }
-    if (t == LightType::Spot) {
-      l.inner_cone_deg = v.number("inner_cone");
-      l.outer_cone_deg = v.number("outer_cone");
-    }
-    if (t == LightType::Directional || t == LightType::Spot) {
+    if (v.declares("position")) l.position = v.vec3("position");
+    if (v.declares("range")) l.range = v.optional_number("range");
+    if (v.declares("inner_cone")) l.inner_cone_deg = v.number("inner_cone");
+    if (v.declares("outer_cone")) l.outer_cone_deg = v.number("outer_cone");
+    if (v.declares("direction")) {
       auto d = direction(v.vec3("direction"), pointer + "/direction", "direction");
       if (!d) return std::nullopt;
       l.direction = *d;
