@@ -248,15 +248,26 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
 
 // --- single queries ----------------------------------------------------------------------------------
 
+// The general paths of eval and pdf, out of line: a bound point is kilobytes of stack that the hot
+// path below should not set up.
+namespace {
+[[gnu::noinline]] vec3 bound_eval(const Evaluator& e, const ShadingContext& ctx, vec3 wi, vec3 wo) {
+  return e.bind(ctx).eval(wi, wo);
+}
+[[gnu::noinline]] float bound_pdf(const Evaluator& e, const ShadingContext& ctx, vec3 wi, vec3 wo) {
+  return e.bind(ctx).pdf(wi, wo);
+}
+}  // namespace
+
 vec3 Evaluator::eval(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
   // The hot path: an untextured material in the local frame needs no bound point.
   if (!program_.textured() && default_frame(ctx)) return Local{count_, entries_.data(), fixed_.data()}.eval(wi, wo);
-  return bind(ctx).eval(wi, wo);
+  return bound_eval(*this, ctx, wi, wo);
 }
 
 float Evaluator::pdf(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
   if (!program_.textured() && default_frame(ctx)) return Local{count_, entries_.data(), fixed_.data()}.pdf(wi, wo);
-  return bind(ctx).pdf(wi, wo);
+  return bound_pdf(*this, ctx, wi, wo);
 }
 
 EvalPdf Evaluator::eval_pdf(const ShadingContext& ctx, vec3 wi, vec3 wo) const { return bind(ctx).eval_pdf(wi, wo); }

@@ -316,6 +316,9 @@ struct LaminaEvalStep {
 LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
+  // A bare substrate is the only one-entry stack: its lobe is the whole walk. (count is constant
+  // per material, so the branch is uniform on the GPU and in SIMD lanes.)
+  if (count == 1) return max(lamina_substrate_eval(entries[0], params[0], wi, wo), vec3(0.0f));
   LaminaEvalStep s[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
