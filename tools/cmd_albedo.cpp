@@ -1,10 +1,8 @@
 // lamina albedo FILE --material NAME --theta DEG: the directional albedo (the integral of f cos
 // over the hemisphere) seen from theta degrees off the normal, by the evaluator's quadrature.
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "tools/commands.h"
 #include "tools/material_arg.h"
@@ -24,25 +22,18 @@ struct AlbedoOptions {
 };
 
 int run_albedo(const AlbedoOptions& o) {
-  if (!(o.theta_deg >= 0.0 && o.theta_deg < 90.0)) {
-    std::cerr << "lamina: --theta: " << o.theta_deg
-              << " is outside [0, 90) (the view angle from the normal in degrees; 90 is grazing and has no albedo)\n";
-    return kExitInvalid;
-  }
+  const std::optional<glm::vec3> wo = parse_view_angle(o.theta_deg);
+  if (!wo) return kExitInvalid;
   if (o.points < 1 || o.points > kMaxPoints) {
     std::cerr << "lamina: --points: " << o.points << " is outside [1, " << kMaxPoints
               << "] (quadrature points per lobe)\n";
     return kExitInvalid;
   }
-  auto uv = parse_numbers("--uv", o.uv, 2);
-  if (!uv) return kExitInvalid;
+  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  if (!ctx) return kExitInvalid;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
-  ShadingContext ctx;
-  ctx.uv = glm::vec2((*uv)[0], (*uv)[1]);
-  double theta = o.theta_deg * std::numbers::pi / 180.0;
-  glm::vec3 wo(float(std::sin(theta)), 0.0f, float(std::cos(theta)));
-  glm::vec3 albedo = evaluator->albedo(ctx, wo, o.points);
+  glm::vec3 albedo = evaluator->albedo(*ctx, *wo, o.points);
   if (o.json) {
     nlohmann::json report{{"albedo", {albedo.r, albedo.g, albedo.b}}, {"theta_deg", o.theta_deg}};
     std::cout << report.dump() << "\n";

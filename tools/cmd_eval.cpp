@@ -21,13 +21,12 @@ struct EvalOptions {
 int run_eval(const EvalOptions& o) {
   auto wi = parse_direction("--wi", o.wi);
   auto wo = parse_direction("--wo", o.wo);
-  auto uv = parse_numbers("--uv", o.uv, 2);
-  if (!wi || !wo || !uv) return kExitInvalid;
+  if (!wi || !wo) return kExitInvalid;
+  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  if (!ctx) return kExitInvalid;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
-  ShadingContext ctx;
-  ctx.uv = glm::vec2((*uv)[0], (*uv)[1]);
-  cpu::EvalPdf result = evaluator->eval_pdf(ctx, *wi, *wo);
+  cpu::EvalPdf result = evaluator->eval_pdf(*ctx, *wi, *wo);
   if (o.json) {
     nlohmann::json report{{"f", {result.f.r, result.f.g, result.f.b}}, {"pdf", result.pdf}};
     std::cout << report.dump() << "\n";

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "graph/compile.h"
@@ -152,6 +154,26 @@ std::optional<glm::vec3> parse_direction(std::string_view option, std::string_vi
   // Rescale first when squaring would overflow or underflow; otherwise exactly glm::normalize.
   if (!std::isfinite(length_squared) || length_squared < 1.0e-30f) v /= largest;
   return glm::normalize(v);
+}
+
+std::optional<ShadingContext> parse_uv_context(std::string_view text) {
+  auto uv = parse_numbers("--uv", text, 2);
+  if (!uv) return std::nullopt;
+  ShadingContext ctx;
+  ctx.uv = glm::vec2((*uv)[0], (*uv)[1]);
+  return ctx;
+}
+
+std::optional<glm::vec3> parse_view_angle(double theta_deg) {
+  if (!(theta_deg >= 0.0 && theta_deg < 90.0)) {
+    std::ostringstream text;
+    text << "--theta: " << theta_deg
+         << " is outside [0, 90) (the view angle from the normal in degrees; 90 is grazing and has no albedo)";
+    print_problem(text.str());
+    return std::nullopt;
+  }
+  const double theta = theta_deg * std::numbers::pi / 180.0;
+  return glm::vec3(float(std::sin(theta)), 0.0f, float(std::cos(theta)));
 }
 
 }  // namespace lamina::cli

@@ -42,4 +42,12 @@ std::optional<std::vector<float>> parse_numbers(std::string_view option, std::st
 // A direction from "X,Y,Z", normalised; a zero vector is a mistake (printed, nothing returned).
 std::optional<glm::vec3> parse_direction(std::string_view option, std::string_view text);
 
+// The default shading context at the texture coordinates "U,V" of --uv; on a mistake prints it and
+// returns nothing.
+std::optional<ShadingContext> parse_uv_context(std::string_view text);
+
+// The view direction theta degrees off the normal, (sin theta, 0, cos theta), for --theta in
+// [0, 90); otherwise prints the mistake and returns nothing.
+std::optional<glm::vec3> parse_view_angle(double theta_deg);
+
 }  // namespace lamina::cli

@@ -24,6 +24,14 @@ for file in examples/materials/*.json; do
   echo "$row"
 done
 echo
+echo "== lamina reference: the slab's true directional albedo at 30 deg (Monte Carlo, 65536 walks) beside the model's"
+printf '%-24s %-26s %s\n' material "model" "reference (+- standard error)"
+for file in examples/materials/*.json; do
+  model=$($lamina albedo "$file" --theta 30 | sed 's/^albedo = //')
+  reference=$($lamina reference "$file" --albedo --theta 30 | sed 's/^albedo = //; s/ (standard error.*//')
+  printf '%-24s %-26s %s\n' "$(basename "$file" .json)" "$(printf '%.3f ' $model)" "$reference"
+done
+echo
 echo "== lamina eval: f (R G B, 1/sr, no cosine) and pdf of every example, light 30 deg off the normal, view 45 deg on the other side"
 for file in examples/materials/*.json; do
   printf '%-24s %s\n' "$(basename "$file" .json)" "$($lamina eval "$file" --wi 0.5,0,0.8660254 --wo -0.7071068,0,0.7071068)"

@@ -169,6 +169,10 @@ struct Local {
   }
 };
 
+ShadingPoint::Stack ShadingPoint::stack() const {
+  return Stack{evaluator_->count_, evaluator_->entries_.data(), params()};
+}
+
 Local ShadingPoint::queries() const { return Local{evaluator_->count_, evaluator_->entries_.data(), params()}; }
 
 vec3 ShadingPoint::eval(vec3 wi, vec3 wo) const { return queries().eval(local(wi), local(wo)); }

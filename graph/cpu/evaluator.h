@@ -69,6 +69,17 @@ class ShadingPoint {
   std::vector<float> lobe_weights(glm::vec3 wo) const;
   LobeFlags lobe_flags(size_t lobe) const;
 
+  // The compiled stack at this point as the kernels read it: the entries (the same for every
+  // point) and their parameters here. For walks that need more than the model's queries (the
+  // reference solver, graph/cpu/reference.h).
+  struct Stack {
+    int count = 0;
+    const kernels::LaminaEntry* entries = nullptr;
+    const kernels::LaminaParams* params = nullptr;
+  };
+  Stack stack() const;
+  glm::vec3 local_direction(glm::vec3 w) const { return local(w); }
+
   const Frame& frame() const { return frame_; }
   // The texture registers (Program::slot_count floats): two points with equal registers have the
   // same BRDF, which back ends that bake textures use to group texels.

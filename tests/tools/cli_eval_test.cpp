@@ -12,6 +12,7 @@
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
+#include "graph/cpu/reference.h"
 #include "graph/load.h"
 #include "test_support.h"
 
@@ -327,4 +328,43 @@ TEST_CASE("lamina plot takes the slices' uv and the sky's radiance, and rejects 
     CHECK(r.out.empty());
   }
   CHECK(test::listing(empty.path()).empty());
+}
+
+TEST_CASE("lamina reference prints the library's estimate with its error, and rejects mistakes with exit 2") {
+  const glm::vec3 wi = glm::normalize(glm::vec3(0.3f, 0.1f, 1.0f));
+  const glm::vec3 wo = glm::normalize(glm::vec3(-0.4f, 0.0f, 1.0f));
+  cpu::Evaluator evaluator = library_evaluator(kCarPaint);
+  const cpu::ReferenceEstimate expected = cpu::reference_eval(evaluator.bind({}), wi, wo, {4000, 1000, 5});
+
+  auto json = test::run_cli(
+      std::string("reference ") + kCarPaint + " --wi 0.3,0.1,1 --wo -0.4,0,1 --walks 4000 " + "--seed 5 --json",
+      test::source_dir());
+  INFO(json.err);
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json report = nlohmann::json::parse(json.out);
+  for (int c = 0; c < 3; ++c) {
+    CHECK(report.at("f")[c].get<double>() == expected.value[c]);
+    CHECK(report.at("std_error")[c].get<double>() == expected.std_error[c]);
+  }
+  CHECK(report.at("walks") == 4000);
+
+  auto albedo =
+      test::run_cli(std::string("reference ") + kCarPaint + " --albedo --theta 30 --walks 2000", test::source_dir());
+  REQUIRE(albedo.exit_code == 0);
+  double r = -1, g = -1, b = -1;
+  REQUIRE(std::sscanf(albedo.out.c_str(), "albedo = %lg %lg %lg  +-", &r, &g, &b) == 3);
+  for (double v : {r, g, b}) CHECK((v > 0.0 && v < 1.0));
+
+  for (const char* bad : {" --wi 0,0,1", " --albedo", " --albedo --theta 90", " --wi 0,0,1 --wo 0,0,1 --walks 0",
+                          " --albedo --theta 10 --wo 0,0,1", " --wi 0,0,1 --wo 0,0,1 --max-depth 0"}) {
+    auto run = test::run_cli(std::string("reference ") + kCarPaint + bad, test::source_dir());
+    INFO(bad << ": " << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK(run.out.empty());
+    CHECK(run.err.find("lamina: ") != std::string::npos);
+  }
+  auto invalid = test::run_cli(std::string("reference ") + kInvalid + " --albedo --theta 10", test::source_dir());
+  CHECK(invalid.exit_code == 2);
+  CHECK(invalid.out.empty());
+  CHECK(invalid.err.find("ior_below_one.json") != std::string::npos);
 }

@@ -1,0 +1,367 @@
+#include "graph/cpu/reference.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+
+namespace lamina::cpu {
+
+namespace k = kernels;
+using glm::dvec3;
+using glm::vec3;
+
+namespace {
+
+// PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms
+// for Random Number Generation", the XSH RR 64/32 member): a 64-bit LCG whose state is output
+// through a xorshift and a data-dependent rotation; `stream` selects one of 2^63 sequences.
+class Pcg32 {
+ public:
+  Pcg32(uint64_t seed, uint64_t stream) : inc_((stream << 1u) | 1u) {
+    next();
+    state_ += seed;
+    next();
+  }
+  uint32_t next() {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ull + inc_;
+    const auto xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+    const auto rotation = uint32_t(old >> 59u);
+    return std::rotr(xorshifted, int(rotation));
+  }
+  // Uniform in [0, 1): the top 24 bits, exactly representable as a float.
+  float uniform() { return float(next() >> 8u) * 0x1p-24f; }
+  vec3 uniform3() {
+    const float a = uniform(), b = uniform();
+    return vec3(a, b, uniform());
+  }
+
+ private:
+  uint64_t state_ = 0;
+  uint64_t inc_;
+};
+
+// SplitMix64's finaliser (Steele, Lea and Flood 2014): every input bit affects every output bit.
+uint64_t mix64(uint64_t x) {
+  x = (x ^ (x >> 30u)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27u)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31u);
+}
+
+uint64_t hash_directions(vec3 a, vec3 b, uint64_t seed) {
+  uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ull);
+  for (float x : {a.x, a.y, a.z, b.x, b.y, b.z}) h = mix64(h ^ std::bit_cast<uint32_t>(x));
+  return h;
+}
+
+// A boundary the walk meets: a layer's interface from above or below, or a substrate from above.
+struct Vertex {
+  int entry = -1;
+  bool from_below = false;
+};
+
+// Per-walk contributions summed in double by Welford's method (Welford 1962): the spread stays
+// exact when every walk returns the same value, however many there are.
+struct Tally {
+  dvec3 mean{0.0}, m2{0.0}, truncated{0.0};
+  int64_t walks = 0, truncated_walks = 0;
+  void add(vec3 x) {
+    ++walks;
+    const dvec3 d = dvec3(x) - mean;
+    mean += d / double(walks);
+    m2 += d * (dvec3(x) - mean);
+  }
+  ReferenceEstimate result() const {
+    ReferenceEstimate r;
+    r.walks = walks;
+    r.truncated_walks = truncated_walks;
+    if (walks == 0) return r;
+    const double n = double(walks);
+    r.value = mean;
+    r.truncated = truncated / n;
+    if (walks > 1) r.std_error = glm::sqrt(glm::max(m2 / (n - 1.0), dvec3(0.0)) / n);
+    return r;
+  }
+};
+
+// Walks a stack at one shading point. Directions are in the stack's frame (z up) and, at a
+// vertex, point away from it: e back along the walk (toward the viewer's side), l toward the
+// light's.
+class Walk {
+ public:
+  Walk(const ShadingPoint::Stack& stack, Pcg32& rng) : s_(stack), rng_(rng) {}
+
+  const k::LaminaEntry& entry(int i) const { return s_.entries[i]; }
+  const k::LaminaParams& params(int i) const { return s_.params[i]; }
+  bool is_layer(int i) const { return entry(i).kind == k::LAMINA_LAYER; }
+  // An interface between equal indices neither reflects nor bends: light passes straight through.
+  bool invisible(int layer) const { return params(layer).eta == 1.0f; }
+
+  // The entry below medium `medium` (-1: the outside) that light going down meets, each mix it
+  // passes resolved by a fresh random choice.
+  int resolve_down(int medium) {
+    int c = medium < 0 ? 0 : entry(medium).first;
+    while (c >= 0 && entry(c).kind == k::LAMINA_MIX)
+      c = rng_.uniform() < params(c).weight ? entry(c).second : entry(c).first;
+    return c;
+  }
+
+  // The medium above a layer's interface: its nearest layer ancestor, -1 for the outside.
+  int medium_above(int layer) const {
+    int p = entry(layer).parent;
+    while (p >= 0 && !is_layer(p)) p = entry(p).parent;
+    return p;
+  }
+
+  vec3 crossing(int medium, vec3 w) const {
+    if (medium < 0) return vec3(1.0f);
+    return k::lamina_crossing_transmittance(params(medium).absorption, params(medium).thickness, w.z);
+  }
+
+  // f(l, e) of a vertex, RGB.
+  vec3 f(const Vertex& v, vec3 l, vec3 e) const {
+    const k::LaminaEntry& x = entry(v.entry);
+    const k::LaminaParams& p = params(v.entry);
+    if (x.kind == k::LAMINA_LAYER) return vec3(k::lamina_boundary_eval(l, e, p.eta, x.distribution, x.fresnel, p.m));
+    if (l.z <= 0.0f || e.z <= 0.0f) return vec3(0.0f);
+    return k::lamina_substrate_eval(x, p, l, e);
+  }
+
+  // The density with which `sample` draws y from x.
+  float pdf(const Vertex& v, vec3 y, vec3 x) const {
+    const k::LaminaEntry& e = entry(v.entry);
+    const k::LaminaParams& p = params(v.entry);
+    if (e.kind == k::LAMINA_LAYER) return k::lamina_boundary_pdf(y, x, p.eta, e.distribution, e.fresnel, p.m);
+    if (y.z <= 0.0f || x.z <= 0.0f) return 0.0f;
+    if (e.model == k::LAMINA_SUBSTRATE_CONDUCTOR) return k::lamina_reflection_density(e.distribution, p.m, x, y);
+    return k::pdf_cosine(y.z);
+  }
+
+  // A direction the vertex scatters x into; vec3(0) if the draw is lost.
+  vec3 sample(const Vertex& v, vec3 x, vec3 u) const {
+    const k::LaminaEntry& e = entry(v.entry);
+    const k::LaminaParams& p = params(v.entry);
+    if (e.kind == k::LAMINA_LAYER) return k::lamina_boundary_sample(x, p.eta, e.distribution, e.fresnel, p.m, u);
+    if (x.z <= 0.0f) return vec3(0.0f);
+    if (e.model != k::LAMINA_SUBSTRATE_CONDUCTOR) return k::sample_cosine(glm::vec2(u.x, u.y));
+    const vec3 h = k::sample_microfacet_normal(e.distribution, p.m, glm::vec2(u.x, u.y));
+    const float x_h = glm::dot(x, h);
+    if (x_h <= 0.0f) return vec3(0.0f);
+    const vec3 y = 2.0f * x_h * h - x;
+    return y.z > 0.0f ? glm::normalize(y) : vec3(0.0f);
+  }
+
+  Pcg32& rng() { return rng_; }
+
+ private:
+  const ShadingPoint::Stack& s_;
+  Pcg32& rng_;
+};
+
+// What a walk sees above its top interface: the index-matched layers it passed on the way in
+// (their media attenuate each crossing but nothing reflects there) and the first boundary that
+// does. With a mix on the way, each walk resolves its own.
+struct Top {
+  int entry = -1;  // a visible layer or a substrate
+  std::array<int, kMaxStackEntries> clear_media{};
+  int clear_count = 0;
+
+  vec3 outside_crossing(const Walk& w, vec3 dir) const {
+    vec3 t(1.0f);
+    for (int i = 0; i < clear_count; ++i) t *= w.crossing(clear_media[size_t(i)], dir);
+    return t;
+  }
+};
+
+Top find_top(Walk& w) {
+  Top top;
+  int c = w.resolve_down(-1);
+  while (c >= 0 && w.is_layer(c) && w.invisible(c)) {
+    top.clear_media[size_t(top.clear_count++)] = c;
+    c = w.resolve_down(c);
+  }
+  top.entry = c;
+  return top;
+}
+
+// Where a walk travelling along d in `medium` meets its next vertex, passing index-matched
+// interfaces (and attenuating by the media it crosses on the way). Returns the vertex; `medium`
+// becomes the medium the vertex is met from and beta takes the crossings.
+Vertex next_vertex(Walk& w, int& medium, vec3 d, vec3& beta) {
+  beta *= w.crossing(medium, d);
+  if (d.z > 0.0f) {
+    while (w.invisible(medium)) {
+      medium = w.medium_above(medium);
+      beta *= w.crossing(medium, d);
+    }
+    return Vertex{medium, true};
+  }
+  int c = w.resolve_down(medium);
+  while (w.is_layer(c) && w.invisible(c)) {
+    medium = c;
+    beta *= w.crossing(medium, d);
+    c = w.resolve_down(medium);
+  }
+  return Vertex{c, false};
+}
+
+// The medium a vertex sends y into.
+int medium_after(const Walk& w, const Vertex& v, int medium, vec3 y) {
+  if (!w.is_layer(v.entry)) return medium;
+  if (v.from_below) return y.z > 0.0f ? w.medium_above(v.entry) : medium;
+  return y.z < 0.0f ? v.entry : medium;
+}
+
+// Whether light leaving vertex v upward (in the medium above it) reaches the top interface from
+// below without meeting another boundary, and the transmittance along direction `up` if so.
+bool reaches_top(const Walk& w, const Vertex& v, int medium, int top, vec3 up, vec3& transmittance) {
+  int m = v.from_below ? w.medium_above(v.entry) : medium;
+  transmittance = vec3(1.0f);
+  while (m != top) {
+    if (m < 0 || !w.invisible(m)) return false;
+    transmittance *= w.crossing(m, up);
+    m = w.medium_above(m);
+  }
+  transmittance *= w.crossing(top, up);
+  return true;
+}
+
+float max_component(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// Russian roulette after a few events: survive with probability max(beta) (at most 1), weight
+// divided by it, so the expectation is unchanged.
+bool survives(Walk& w, int depth, vec3& beta) {
+  if (depth < 8) return true;
+  const float q = std::min(max_component(beta), 1.0f);
+  if (!(q > 0.0f) || w.rng().uniform() >= q) return false;
+  beta /= q;
+  return true;
+}
+
+// One walk's estimate of f(wi, wo) (both in the upper hemisphere, in the stack's frame).
+vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
+  const Top top = find_top(w);
+  const vec3 outside = top.outside_crossing(w, wi) * top.outside_crossing(w, wo);
+  if (top.entry < 0) return vec3(0.0f);
+  const Vertex top_above{top.entry, false};
+  // Reflection at the top boundary, exact.
+  vec3 f = w.f(top_above, wi, wo);
+  if (!w.is_layer(top.entry)) return outside * f;
+  const int t = top.entry;
+
+  // The light's side: a direction into the top medium drawn from wi, for joining walks there.
+  const vec3 light_dir = w.sample(top_above, wi, w.rng().uniform3());
+  const float light_pdf = light_dir.z < 0.0f ? w.pdf(top_above, light_dir, wi) : 0.0f;
+  const vec3 light_weight = light_pdf > 0.0f ? w.f(top_above, wi, light_dir) / light_pdf : vec3(0.0f);
+
+  // The viewer's side: into the top medium from wo.
+  vec3 d = w.sample(top_above, wo, w.rng().uniform3());
+  if (!(d.z < 0.0f)) return outside * f;
+  const float enter_pdf = w.pdf(top_above, d, wo);
+  if (!(enter_pdf > 0.0f)) return outside * f;
+  vec3 beta = w.f(top_above, d, wo) * std::abs(d.z) / enter_pdf;
+  int medium = t;
+  float last_pdf = 0.0f;  // the density with which the last vertex drew d
+
+  for (int depth = 0;; ++depth) {
+    if (depth >= max_depth) {
+      tally.truncated += dvec3(beta);
+      ++tally.truncated_walks;
+      break;
+    }
+    const Vertex v = next_vertex(w, medium, d, beta);
+    const vec3 e = -d;
+    if (v.entry == t && v.from_below) {
+      // Reached the top from below: leave toward wi, weighed against the light side's draw of d.
+      const float light_density = w.pdf(top_above, e, wi);
+      const float weight = last_pdf / (last_pdf + light_density);
+      f += beta * w.f(v, wi, e) * weight;
+    } else if (light_pdf > 0.0f) {
+      // Join the light side's direction here if nothing lies between this vertex and the top.
+      const vec3 up = -light_dir;
+      vec3 transmittance;
+      if (reaches_top(w, v, medium, t, up, transmittance)) {
+        const float own = w.pdf(v, up, e);
+        const float weight = light_pdf / (light_pdf + own);
+        f += beta * w.f(v, up, e) * std::abs(up.z) * transmittance * light_weight * weight;
+      }
+    }
+    // Scatter.
+    const vec3 y = w.sample(v, e, w.rng().uniform3());
+    if (y == vec3(0.0f)) break;
+    const float p = w.pdf(v, y, e);
+    if (!(p > 0.0f)) break;
+    beta *= w.f(v, y, e) * std::abs(y.z) / p;
+    if (v.entry == t && v.from_below && y.z > 0.0f) break;  // left through the top: counted above
+    medium = medium_after(w, v, medium, y);
+    d = y;
+    last_pdf = p;
+    if (!survives(w, depth, beta)) break;
+  }
+  return outside * f;
+}
+
+// One walk's estimate of the albedo seen from wo: the weight with which it leaves.
+vec3 walk_albedo(Walk& w, vec3 wo, int max_depth, Tally& tally) {
+  const Top top = find_top(w);
+  if (top.entry < 0) return vec3(0.0f);
+  const vec3 in = top.outside_crossing(w, wo);
+  const Vertex top_above{top.entry, false};
+  vec3 d = w.sample(top_above, wo, w.rng().uniform3());
+  if (d == vec3(0.0f)) return vec3(0.0f);
+  const float p0 = w.pdf(top_above, d, wo);
+  if (!(p0 > 0.0f)) return vec3(0.0f);
+  vec3 beta = w.f(top_above, d, wo) * std::abs(d.z) / p0;
+  if (d.z > 0.0f) return in * beta * top.outside_crossing(w, d);
+  int medium = top.entry;
+  for (int depth = 0;; ++depth) {
+    if (depth >= max_depth) {
+      tally.truncated += dvec3(in * beta);
+      ++tally.truncated_walks;
+      return vec3(0.0f);
+    }
+    const Vertex v = next_vertex(w, medium, d, beta);
+    const vec3 e = -d;
+    const vec3 y = w.sample(v, e, w.rng().uniform3());
+    if (y == vec3(0.0f)) return vec3(0.0f);
+    const float p = w.pdf(v, y, e);
+    if (!(p > 0.0f)) return vec3(0.0f);
+    beta *= w.f(v, y, e) * std::abs(y.z) / p;
+    if (v.entry == top.entry && v.from_below && y.z > 0.0f) return in * beta * top.outside_crossing(w, y);
+    medium = medium_after(w, v, medium, y);
+    d = y;
+    if (!survives(w, depth, beta)) return vec3(0.0f);
+  }
+}
+
+template <class OneWalk>
+ReferenceEstimate run(const ShadingPoint& point, uint64_t seed, const ReferenceOptions& options, OneWalk one) {
+  const ShadingPoint::Stack stack = point.stack();
+  Tally tally;
+  for (int64_t i = 0; i < options.walks; ++i) {
+    Pcg32 rng(seed, uint64_t(i));
+    Walk w(stack, rng);
+    tally.add(one(w, tally));
+  }
+  return tally.result();
+}
+
+}  // namespace
+
+ReferenceEstimate reference_eval(const ShadingPoint& point, vec3 wi, vec3 wo, const ReferenceOptions& options) {
+  wi = point.local_direction(wi);
+  wo = point.local_direction(wo);
+  if (!(wi.z > 0.0f && wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
+  const uint64_t seed = hash_directions(wi, wo, options.seed);
+  return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_eval(w, wi, wo, options.max_depth, t); });
+}
+
+ReferenceEstimate reference_albedo(const ShadingPoint& point, vec3 wo, const ReferenceOptions& options) {
+  wo = point.local_direction(wo);
+  if (!(wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
+  const uint64_t seed = hash_directions(vec3(0.0f), wo, options.seed ^ 0xa1bed0ull);
+  return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_albedo(w, wo, options.max_depth, t); });
+}
+
+}  // namespace lamina::cpu
