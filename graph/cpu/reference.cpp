@@ -1,5 +1,8 @@
 #include "graph/cpu/reference.h"
 
+#include "graph/cpu/microsurface.h"
+#include "graph/cpu/pcg32.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -12,35 +15,6 @@ using glm::dvec3;
 using glm::vec3;
 
 namespace {
-
-// PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms
-// for Random Number Generation", the XSH RR 64/32 member): a 64-bit LCG whose state is output
-// through a xorshift and a data-dependent rotation; `stream` selects one of 2^63 sequences.
-class Pcg32 {
- public:
-  Pcg32(uint64_t seed, uint64_t stream) : inc_((stream << 1u) | 1u) {
-    next();
-    state_ += seed;
-    next();
-  }
-  uint32_t next() {
-    const uint64_t old = state_;
-    state_ = old * 6364136223846793005ull + inc_;
-    const auto xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-    const auto rotation = uint32_t(old >> 59u);
-    return std::rotr(xorshifted, int(rotation));
-  }
-  // Uniform in [0, 1): the top 24 bits, exactly representable as a float.
-  float uniform() { return float(next() >> 8u) * 0x1p-24f; }
-  vec3 uniform3() {
-    const float a = uniform(), b = uniform();
-    return vec3(a, b, uniform());
-  }
-
- private:
-  uint64_t state_ = 0;
-  uint64_t inc_;
-};
 
 // SplitMix64's finaliser (Steele, Lea and Flood 2014): every input bit affects every output bit.
 uint64_t mix64(uint64_t x) {
@@ -119,17 +93,26 @@ class Walk {
     return k::lamina_crossing_transmittance(params(medium).absorption, params(medium).thickness, w.z);
   }
 
-  // f(l, e) of a vertex, RGB.
-  vec3 f(const Vertex& v, vec3 l, vec3 e) const {
-    const k::LaminaEntry& x = entry(v.entry);
-    const k::LaminaParams& p = params(v.entry);
-    if (x.kind == k::LAMINA_LAYER) return vec3(k::lamina_boundary_eval(l, e, p.eta, x.distribution, x.fresnel, p.m));
-    if (l.z <= 0.0f || e.z <= 0.0f) return vec3(0.0f);
-    return k::lamina_substrate_eval(x, p, l, e);
+  MicrosurfaceBoundary boundary(int layer) const {
+    const k::LaminaEntry& x = entry(layer);
+    const k::LaminaParams& p = params(layer);
+    return MicrosurfaceBoundary{p.eta, x.distribution, x.fresnel, p.m};
   }
 
-  // The density with which `sample` draws y from x.
-  float pdf(const Vertex& v, vec3 y, vec3 x) const {
+  // f(l, e) of a vertex, RGB: an interface's by one walk over its microsurface (an unbiased
+  // estimate), a substrate's exactly.
+  vec3 f(const Vertex& v, vec3 l, vec3 e) {
+    const k::LaminaEntry& x = entry(v.entry);
+    if (x.kind == k::LAMINA_LAYER) return vec3(microsurface_eval(boundary(v.entry), l, e, rng_) / std::abs(e.z));
+    if (l.z <= 0.0f || e.z <= 0.0f) return vec3(0.0f);
+    return k::lamina_substrate_eval(x, params(v.entry), l, e);
+  }
+
+  // What the balance heuristic weighs a vertex's draws by: a substrate's exact density; for an
+  // interface, whose walks have no closed-form density, its single-scattering density
+  // (lamina_boundary_pdf), which is close to it where it matters (narrow lobes). Any weights that
+  // sum to 1 over the strategies keep the estimate unbiased (Veach 1997, sec. 9.2).
+  float weighing_density(const Vertex& v, vec3 y, vec3 x) const {
     const k::LaminaEntry& e = entry(v.entry);
     const k::LaminaParams& p = params(v.entry);
     if (e.kind == k::LAMINA_LAYER) return k::lamina_boundary_pdf(y, x, p.eta, e.distribution, e.fresnel, p.m);
@@ -138,18 +121,41 @@ class Walk {
     return k::pdf_cosine(y.z);
   }
 
-  // A direction the vertex scatters x into; vec3(0) if the draw is lost.
-  vec3 sample(const Vertex& v, vec3 x, vec3 u) const {
+  struct Scatter {
+    vec3 y{0.0f};       // the light's side, pointing away from the vertex; 0 if the draw is lost
+    vec3 weight{0.0f};  // f(y, x) |y.z| / density: what the viewer's path is multiplied by
+  };
+
+  // A direction the vertex scatters x (the viewer's side) into, and the path's weight. An
+  // interface's walk from x averages f(x, y) |y.z|; radiance from y to x is f(y, x) =
+  // f(x, y) n_x^2 / n_y^2 (boundary.glsl), hence the ratio of the squared indices.
+  Scatter scatter(const Vertex& v, vec3 x) {
+    Scatter out;
     const k::LaminaEntry& e = entry(v.entry);
     const k::LaminaParams& p = params(v.entry);
-    if (e.kind == k::LAMINA_LAYER) return k::lamina_boundary_sample(x, p.eta, e.distribution, e.fresnel, p.m, u);
-    if (x.z <= 0.0f) return vec3(0.0f);
-    if (e.model != k::LAMINA_SUBSTRATE_CONDUCTOR) return k::sample_cosine(glm::vec2(u.x, u.y));
-    const vec3 h = k::sample_microfacet_normal(e.distribution, p.m, glm::vec2(u.x, u.y));
-    const float x_h = glm::dot(x, h);
-    if (x_h <= 0.0f) return vec3(0.0f);
-    const vec3 y = 2.0f * x_h * h - x;
-    return y.z > 0.0f ? glm::normalize(y) : vec3(0.0f);
+    if (e.kind == k::LAMINA_LAYER) {
+      const MicrosurfaceSample drawn = microsurface_sample(boundary(v.entry), x, rng_);
+      if (drawn.direction == vec3(0.0f)) return out;
+      const float n_x = k::lamina_side_index(x, p.eta), n_y = k::lamina_side_index(drawn.direction, p.eta);
+      out.y = drawn.direction;
+      out.weight = vec3(drawn.weight * (n_x * n_x) / (n_y * n_y));
+      return out;
+    }
+    if (x.z <= 0.0f) return out;
+    const vec3 u = rng_.uniform3();
+    vec3 y = k::sample_cosine(glm::vec2(u.x, u.y));
+    if (e.model == k::LAMINA_SUBSTRATE_CONDUCTOR) {
+      const vec3 h = k::sample_microfacet_normal(e.distribution, p.m, glm::vec2(u.x, u.y));
+      const float x_h = glm::dot(x, h);
+      y = x_h > 0.0f ? 2.0f * x_h * h - x : vec3(0.0f);
+      if (!(y.z > 0.0f)) return out;
+      y = glm::normalize(y);
+    }
+    const float density = weighing_density(v, y, x);
+    if (!(density > 0.0f)) return out;
+    out.y = y;
+    out.weight = k::lamina_substrate_eval(e, p, y, x) * y.z / density;
+    return out;
   }
 
   Pcg32& rng() { return rng_; }
@@ -242,27 +248,28 @@ bool survives(Walk& w, int depth, vec3& beta) {
 // One walk's estimate of f(wi, wo) (both in the upper hemisphere, in the stack's frame).
 vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
   const Top top = find_top(w);
-  const vec3 outside = top.outside_crossing(w, wi) * top.outside_crossing(w, wo);
   if (top.entry < 0) return vec3(0.0f);
+  const vec3 outside = top.outside_crossing(w, wi) * top.outside_crossing(w, wo);
   const Vertex top_above{top.entry, false};
-  // Reflection at the top boundary, exact.
+  // Reflection at the top boundary: one walk over its microsurface, or a substrate's exact value.
   vec3 f = w.f(top_above, wi, wo);
   if (!w.is_layer(top.entry)) return outside * f;
   const int t = top.entry;
 
-  // The light's side: a direction into the top medium drawn from wi, for joining walks there.
-  const vec3 light_dir = w.sample(top_above, wi, w.rng().uniform3());
-  const float light_pdf = light_dir.z < 0.0f ? w.pdf(top_above, light_dir, wi) : 0.0f;
-  const vec3 light_weight = light_pdf > 0.0f ? w.f(top_above, wi, light_dir) / light_pdf : vec3(0.0f);
+  // The light's side: a direction d into the top medium drawn by a walk from wi over the top's
+  // microsurface. Its weight averages f(wi, d) |d.z|, so f(wi, d) is estimated by weight / |d.z|.
+  const MicrosurfaceSample light = microsurface_sample(w.boundary(t), wi, w.rng());
+  const bool joinable = light.direction.z < 0.0f;
+  const float light_density = joinable ? w.weighing_density(top_above, light.direction, wi) : 0.0f;
+  const float light_weight = joinable ? light.weight / std::abs(light.direction.z) : 0.0f;
 
-  // The viewer's side: into the top medium from wo.
-  vec3 d = w.sample(top_above, wo, w.rng().uniform3());
-  if (!(d.z < 0.0f)) return outside * f;
-  const float enter_pdf = w.pdf(top_above, d, wo);
-  if (!(enter_pdf > 0.0f)) return outside * f;
-  vec3 beta = w.f(top_above, d, wo) * std::abs(d.z) / enter_pdf;
+  // The viewer's side: into the top medium from wo (a reflection is the top's, counted above).
+  const Walk::Scatter enter = w.scatter(top_above, wo);
+  if (!(enter.y.z < 0.0f)) return outside * f;
+  vec3 beta = enter.weight;
+  vec3 d = enter.y;
   int medium = t;
-  float last_pdf = 0.0f;  // the density with which the last vertex drew d
+  float last_density = 0.0f;  // the weighing density of the last vertex's draw of d
 
   for (int depth = 0;; ++depth) {
     if (depth >= max_depth) {
@@ -274,29 +281,26 @@ vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
     const vec3 e = -d;
     if (v.entry == t && v.from_below) {
       // Reached the top from below: leave toward wi, weighed against the light side's draw of d.
-      const float light_density = w.pdf(top_above, e, wi);
-      const float weight = last_pdf / (last_pdf + light_density);
+      const float light_here = w.weighing_density(top_above, e, wi);
+      const float weight = last_density + light_here > 0.0f ? last_density / (last_density + light_here) : 1.0f;
       f += beta * w.f(v, wi, e) * weight;
-    } else if (light_pdf > 0.0f) {
+    } else if (joinable) {
       // Join the light side's direction here if nothing lies between this vertex and the top.
-      const vec3 up = -light_dir;
+      const vec3 up = -light.direction;
       vec3 transmittance;
       if (reaches_top(w, v, medium, t, up, transmittance)) {
-        const float own = w.pdf(v, up, e);
-        const float weight = light_pdf / (light_pdf + own);
-        f += beta * w.f(v, up, e) * std::abs(up.z) * transmittance * light_weight * weight;
+        const float own = w.weighing_density(v, up, e);
+        const float weight = light_density + own > 0.0f ? light_density / (light_density + own) : 0.0f;
+        if (weight > 0.0f) f += beta * w.f(v, up, e) * std::abs(up.z) * transmittance * light_weight * weight;
       }
     }
-    // Scatter.
-    const vec3 y = w.sample(v, e, w.rng().uniform3());
-    if (y == vec3(0.0f)) break;
-    const float p = w.pdf(v, y, e);
-    if (!(p > 0.0f)) break;
-    beta *= w.f(v, y, e) * std::abs(y.z) / p;
-    if (v.entry == t && v.from_below && y.z > 0.0f) break;  // left through the top: counted above
-    medium = medium_after(w, v, medium, y);
-    d = y;
-    last_pdf = p;
+    const Walk::Scatter next = w.scatter(v, e);
+    if (next.y == vec3(0.0f)) break;
+    beta *= next.weight;
+    if (v.entry == t && v.from_below && next.y.z > 0.0f) break;  // left through the top: counted above
+    medium = medium_after(w, v, medium, next.y);
+    last_density = w.weighing_density(v, next.y, e);
+    d = next.y;
     if (!survives(w, depth, beta)) break;
   }
   return outside * f;
@@ -307,13 +311,11 @@ vec3 walk_albedo(Walk& w, vec3 wo, int max_depth, Tally& tally) {
   const Top top = find_top(w);
   if (top.entry < 0) return vec3(0.0f);
   const vec3 in = top.outside_crossing(w, wo);
-  const Vertex top_above{top.entry, false};
-  vec3 d = w.sample(top_above, wo, w.rng().uniform3());
-  if (d == vec3(0.0f)) return vec3(0.0f);
-  const float p0 = w.pdf(top_above, d, wo);
-  if (!(p0 > 0.0f)) return vec3(0.0f);
-  vec3 beta = w.f(top_above, d, wo) * std::abs(d.z) / p0;
-  if (d.z > 0.0f) return in * beta * top.outside_crossing(w, d);
+  const Walk::Scatter enter = w.scatter(Vertex{top.entry, false}, wo);
+  if (enter.y == vec3(0.0f)) return vec3(0.0f);
+  vec3 beta = enter.weight;
+  if (enter.y.z > 0.0f) return in * beta * top.outside_crossing(w, enter.y);
+  vec3 d = enter.y;
   int medium = top.entry;
   for (int depth = 0;; ++depth) {
     if (depth >= max_depth) {
@@ -322,15 +324,12 @@ vec3 walk_albedo(Walk& w, vec3 wo, int max_depth, Tally& tally) {
       return vec3(0.0f);
     }
     const Vertex v = next_vertex(w, medium, d, beta);
-    const vec3 e = -d;
-    const vec3 y = w.sample(v, e, w.rng().uniform3());
-    if (y == vec3(0.0f)) return vec3(0.0f);
-    const float p = w.pdf(v, y, e);
-    if (!(p > 0.0f)) return vec3(0.0f);
-    beta *= w.f(v, y, e) * std::abs(y.z) / p;
-    if (v.entry == top.entry && v.from_below && y.z > 0.0f) return in * beta * top.outside_crossing(w, y);
-    medium = medium_after(w, v, medium, y);
-    d = y;
+    const Walk::Scatter next = w.scatter(v, -d);
+    if (next.y == vec3(0.0f)) return vec3(0.0f);
+    beta *= next.weight;
+    if (v.entry == top.entry && v.from_below && next.y.z > 0.0f) return in * beta * top.outside_crossing(w, next.y);
+    medium = medium_after(w, v, medium, next.y);
+    d = next.y;
     if (!survives(w, depth, beta)) return vec3(0.0f);
   }
 }

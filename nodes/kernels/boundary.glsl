@@ -8,25 +8,11 @@
 // radiance arriving from l and leaving along e, without the cosine; l and e on the same side is
 // reflection, on opposite sides transmission.
 //
-// Masking is Smith's separable G1(l) G1(e) (Walter eq. 23) for every distribution, with each
-// distribution's own G1 (Walter eqs. 27 and 34; the Phong mapping of sec. 5.2 for Blinn), so that
-// one microsurface reflects and transmits. The layered model's Beckmann and Blinn lobes use the
-// V-cavity term instead (g_microfacet); GGX's are the same.
-
-// Smith's G1 for a direction of cosine cos_w (> 0) against the macro normal, slope m.
-LAMINA_FN float lamina_smith_g1(int distribution, float cos_w, float m) {
-  if (cos_w <= 0.0f) return 0.0f;
-  float c = min(cos_w, 1.0f);
-  float mm = max(m, LAMINA_MIN_SLOPE);
-  if (distribution == 2) return g1_smith_ggx(c, mm);
-  // Beckmann (Walter eq. 27): a = 1 / (m tan theta); Blinn with exponent e maps to Beckmann by
-  // a = sqrt(0.5 e + 1) / tan theta (Walter sec. 5.2). tan = sin / cos, so a = cos / (m' sin).
-  float sin_w = lamina_safe_sqrt(1.0f - c * c);
-  float scale = distribution == 1 ? 1.0f / sqrt(0.5f * blinn_exponent(mm) + 1.0f) : mm;
-  if (sin_w * 1.6f * scale <= c) return 1.0f;  // a >= 1.6: G1 = 1 (eq. 27)
-  float a = c / (scale * sin_w);
-  return (3.535f * a + 2.181f * a * a) / (1.0f + 2.276f * a + 2.577f * a * a);
-}
+// Masking is Smith's separable G1(l) G1(e) (Walter eq. 23, lamina_smith_g1) for every
+// distribution, so that one microsurface reflects and transmits. The layered model's Beckmann and
+// Blinn lobes use the V-cavity term instead (g_microfacet); GGX's are the same. This is the light
+// that scatters once; the reference solver's walks (microsurface.glsl) add the rest and weigh
+// their draws by this boundary's density.
 
 // The index of the side a direction lies on, relative to the medium above.
 LAMINA_FN float lamina_side_index(vec3 w, float eta) { return w.z > 0.0f ? 1.0f : eta; }

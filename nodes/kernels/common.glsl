@@ -79,3 +79,10 @@ LAMINA_FN float lamina_one_minus_exp(float y) {
       y * (1.0f - y * (0.5f - y * (1.0f / 6.0f - y * (1.0f / 24.0f - y * (1.0f / 120.0f - y * (1.0f / 720.0f))))));
   return y < 0.25f ? series : 1.0f - exp(-y);
 }
+
+// erfc(x) for x >= 0, Abramowitz and Stegun 7.1.26 (absolute error below 1.5e-7), in the form
+// poly(t) exp(-x^2) so that the exponential factors out of lamina_smith_lambda.
+LAMINA_FN float lamina_erfc_poly(float x) {
+  float t = 1.0f / (1.0f + 0.3275911f * x);
+  return t * (0.254829592f + t * (-0.284496736f + t * (1.421413741f + t * (-1.453152027f + t * 1.061405429f))));
+}

@@ -41,6 +41,7 @@ using namespace glm;
 #include "nodes/kernels/diffuse.glsl"
 #include "nodes/kernels/layer.glsl"
 #include "nodes/kernels/boundary.glsl"
+#include "nodes/kernels/microsurface.glsl"
 #include "nodes/kernels/texture.glsl"
 #include "nodes/kernels/preview.glsl"
 #include "nodes/kernels/stack.glsl"

@@ -103,6 +103,90 @@ LAMINA_FN float g_smith_ggx(float cos_l, float cos_v, float alpha) {
   return g1_smith_ggx(cos_l, alpha) * g1_smith_ggx(cos_v, alpha);
 }
 
+// The mean of max(0, w.n) / cos_n over normals n drawn with density D(n) cos_n, Blinn's
+// distribution of exponent e, for a direction w of cosine c (> 0) and sine s, over the normals
+// with t = cos_n^(e + 1) in [lo, hi]: 8-point Gauss-Legendre in t (Abramowitz and Stegun 25.4.30),
+// where the density is uniform. Over the azimuth, max(0, w.n) averages to b when b >= a, else to
+// (b acos(-b / a) + sqrt(a^2 - b^2)) / pi, with a = s sin_n and b = c cos_n.
+LAMINA_FN float lamina_blinn_visible_at(float c, float s, float e, float t) {
+  float cos_n = pow(t, 1.0f / (e + 1.0f));
+  float a = s * lamina_safe_sqrt(1.0f - cos_n * cos_n);
+  float b = c * cos_n;
+  if (b >= a) return b;
+  return (b * lamina_acos(-b / a) + lamina_safe_sqrt(a * a - b * b)) * LAMINA_INV_PI;
+}
+
+LAMINA_FN float lamina_blinn_visible_piece(float c, float s, float e, float lo, float hi) {
+  float h = 0.5f * (hi - lo);
+  float mid = 0.5f * (hi + lo);
+  float sum = 0.3626837834f * (lamina_blinn_visible_at(c, s, e, mid - h * 0.1834346425f) +
+                               lamina_blinn_visible_at(c, s, e, mid + h * 0.1834346425f));
+  sum += 0.3137066459f * (lamina_blinn_visible_at(c, s, e, mid - h * 0.5255324099f) +
+                          lamina_blinn_visible_at(c, s, e, mid + h * 0.5255324099f));
+  sum += 0.2223810345f * (lamina_blinn_visible_at(c, s, e, mid - h * 0.7966664774f) +
+                          lamina_blinn_visible_at(c, s, e, mid + h * 0.7966664774f));
+  sum += 0.1012285363f * (lamina_blinn_visible_at(c, s, e, mid - h * 0.9602898565f) +
+                          lamina_blinn_visible_at(c, s, e, mid + h * 0.9602898565f));
+  return h * sum;
+}
+
+// Smith's Lambda of Blinn's distribution for a direction of cosine c in (0, 1): I / c - 1, with I
+// the integral of max(0, w.n) D(n) over the normals, the microsurface's area projected toward w
+// (Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", sec. 5),
+// which has no closed form for Blinn: I = (e + 2) / (e + 1) times the integral over
+// t = cos_n^(e + 1) in [0, 1] of lamina_blinn_visible_at. Above its kink (b = a, where
+// cos_n = sin theta) the integrand is c t^(1 / (e + 1)), integrated exactly; below, by quadrature.
+// Then I / c - 1 = (e + 2) / (e + 1) (lower piece) / c - sin^(e + 2) theta, without the
+// cancellation of forming I first.
+LAMINA_FN float lamina_blinn_lambda(float c, float e) {
+  float s = lamina_safe_sqrt(1.0f - c * c);
+  float kink = pow(s, e + 1.0f);
+  float lower = lamina_blinn_visible_piece(c, s, e, 0.0f, kink);
+  float lambda = (e + 2.0f) / (e + 1.0f) * lower / max(c, LAMINA_MIN_DENOM) - kink * s;
+  return max(lambda, 0.0f);
+}
+
+// Smith's Lambda of direction w for the distribution of slope m, for w on either side:
+// Lambda(-w) = -1 - Lambda(w) (Heitz et al. 2016, sec. 2). Beckmann: Lambda = (erf(a) - 1) / 2 +
+// exp(-a^2) / (2 a sqrt(pi)) with a = 1 / (m tan theta) (Walter et al. 2007, the integral behind
+// eq. 27), here exp(-a^2) (1 / (2 a sqrt(pi)) - poly(a) / 2) and its asymptotic series past a = 3;
+// GGX (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2 (Walter eq. 34's G1 = 1 / (1 + Lambda)); Blinn by
+// quadrature (lamina_blinn_lambda; Walter's sec. 5.2 borrows Beckmann's, which at slope 1 lets a
+// lossless boundary scatter several times the light it receives).
+LAMINA_FN float lamina_smith_lambda(int distribution, vec3 w, float m) {
+  float c = abs(w.z);
+  float lambda_up = 0.0f;
+  if (c < 0.99999f) {
+    float s = sqrt(1.0f - c * c);
+    float mm = max(m, LAMINA_MIN_SLOPE);
+    if (distribution == 2) {
+      float t = mm * s / max(c, LAMINA_MIN_DENOM);
+      lambda_up = 0.5f * (sqrt(1.0f + t * t) - 1.0f);
+    } else if (distribution == 1) {
+      lambda_up = lamina_blinn_lambda(c, blinn_exponent(mm));
+    } else {
+      float a = c / (mm * s);
+      float inv_root_pi = 0.564189583547756f;
+      if (a < 3.0f) {
+        lambda_up = exp(-a * a) * (0.5f * inv_root_pi / max(a, LAMINA_MIN_DENOM) - 0.5f * lamina_erfc_poly(a));
+      } else {
+        float inv2 = 1.0f / (a * a);
+        lambda_up = exp(-a * a) * 0.5f * inv_root_pi / a * inv2 * (0.5f - inv2 * (0.75f - inv2 * 1.875f));
+      }
+      lambda_up = max(lambda_up, 0.0f);
+    }
+  }
+  return w.z >= 0.0f ? lambda_up : -1.0f - lambda_up;
+}
+
+// Smith's masking G1 of a direction of cosine cos_w (> 0) for the distribution of slope m:
+// 1 / (1 + Lambda) (Walter et al. 2007, eq. 23's G1 for each distribution). The layered model's
+// GGX lobes use the same term in g1_smith_ggx's cosine form.
+LAMINA_FN float lamina_smith_g1(int distribution, float cos_w, float m) {
+  if (cos_w <= 0.0f) return 0.0f;
+  return 1.0f / (1.0f + lamina_smith_lambda(distribution, vec3(0.0f, 0.0f, min(cos_w, 1.0f)), m));
+}
+
 // GGX uses its Smith term, the others the V-cavity term. Both are 0 unless the microfacet faces
 // the view (cos_h > 0 and v.h > 0; the chi+ factor of Walter et al. 2007, eq. 34).
 LAMINA_FN float g_microfacet(int distribution, float cos_l, float cos_v, float cos_h, float v_dot_h, float m) {
