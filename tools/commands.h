@@ -27,6 +27,7 @@ void add_schema(CLI::App& app, Runner& runner);
 void add_eval(CLI::App& app, Runner& runner);
 void add_albedo(CLI::App& app, Runner& runner);
 void add_reference(CLI::App& app, Runner& runner);
+void add_compare(CLI::App& app, Runner& runner);
 void add_plot(CLI::App& app, Runner& runner);
 void add_glsl(CLI::App& app, Runner& runner);
 void add_gltf(CLI::App& app, Runner& runner);

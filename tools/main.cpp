@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   add_eval(app, runner);
   add_albedo(app, runner);
   add_reference(app, runner);
+  add_compare(app, runner);
   add_plot(app, runner);
   add_glsl(app, runner);
   add_gltf(app, runner);

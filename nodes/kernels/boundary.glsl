@@ -1,7 +1,8 @@
 // lamina kernels: one rough boundary between two dielectrics that reflects and transmits light in
 // both directions (Walter, Marschner, Li and Torrance 2007, "Microfacet Models for Refraction
-// through Rough Surfaces"). The reference solver (graph/cpu/reference.cpp) walks light through a
-// stack with it; the layered model's interfaces keep their own composition (stack.glsl).
+// through Rough Surfaces"), for the light that scatters once on its facets. The reference solver
+// (graph/cpu/reference.cpp) weighs its ways of reaching the light by this boundary's sampling
+// density; its own walks over the microsurface (microsurface.glsl) scatter any number of times.
 //
 // The boundary is the plane z = 0 of the frame; eta = n_below / n_above. Directions point away
 // from the boundary and may lie on either side (z > 0 above, z < 0 below). f(l, e) is the BSDF for
@@ -10,9 +11,7 @@
 //
 // Masking is Smith's separable G1(l) G1(e) (Walter eq. 23, lamina_smith_g1) for every
 // distribution, so that one microsurface reflects and transmits. The layered model's Beckmann and
-// Blinn lobes use the V-cavity term instead (g_microfacet); GGX's are the same. This is the light
-// that scatters once; the reference solver's walks (microsurface.glsl) add the rest and weigh
-// their draws by this boundary's density.
+// Blinn lobes use the V-cavity term instead (g_microfacet); GGX's are the same.
 
 // The index of the side a direction lies on, relative to the medium above.
 LAMINA_FN float lamina_side_index(vec3 w, float eta) { return w.z > 0.0f ? 1.0f : eta; }

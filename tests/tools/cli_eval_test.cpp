@@ -10,6 +10,7 @@
 #include <set>
 
 #include "graph/compile.h"
+#include "graph/cpu/compare.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
 #include "graph/cpu/reference.h"
@@ -367,4 +368,32 @@ TEST_CASE("lamina reference prints the library's estimate with its error, and re
   CHECK(invalid.exit_code == 2);
   CHECK(invalid.out.empty());
   CHECK(invalid.err.find("ior_below_one.json") != std::string::npos);
+}
+
+TEST_CASE("lamina compare prints the model against the reference, as text and JSON, and rejects mistakes") {
+  auto json = test::run_cli(std::string("compare ") + kCarPaint + " --albedo-walks 500 --slice-walks 50 --json",
+                            test::source_dir());
+  INFO(json.err);
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json report = nlohmann::json::parse(json.out);
+  CHECK(report.at("albedo").size() == std::size(cpu::kCompareAlbedoAngles));
+  CHECK(report.at("slices").size() == std::size(cpu::kCompareViewAngles));
+  for (const auto& row : report.at("albedo")) {
+    CHECK(row.at("model").size() == 3);
+    CHECK(row.at("reference").size() == 3);
+    CHECK(row.at("std_error").size() == 3);
+  }
+  auto text =
+      test::run_cli(std::string("compare ") + kCarPaint + " --albedo-walks 500 --slice-walks 50", test::source_dir());
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("summary: albedo error at most") != std::string::npos);
+  for (const char* bad : {" --albedo-walks 0", " --slice-walks -3", " --uv 0.5"}) {
+    auto run = test::run_cli(std::string("compare ") + kCarPaint + bad, test::source_dir());
+    INFO(bad << ": " << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK(run.out.empty());
+  }
+  auto invalid = test::run_cli(std::string("compare ") + kInvalid, test::source_dir());
+  CHECK(invalid.exit_code == 2);
+  CHECK(invalid.out.empty());
 }
