@@ -4,7 +4,6 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -172,8 +171,7 @@ std::optional<glm::vec3> parse_view_angle(double theta_deg) {
     print_problem(text.str());
     return std::nullopt;
   }
-  const double theta = theta_deg * std::numbers::pi / 180.0;
-  return glm::vec3(float(std::sin(theta)), 0.0f, float(std::cos(theta)));
+  return direction_in_plane(theta_deg);
 }
 
 }  // namespace lamina::cli

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
 #include <string>
 
 #include "tools/plot_style.h"
@@ -22,8 +21,6 @@ constexpr float kThetaLimit = 89.5f;  // the slices stop short of grazing, where
 constexpr float kThetaStep = 0.25f;   // lands exactly on every view angle's mirror direction
 constexpr int kGridStepDeg = 30;
 
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
 }  // namespace
 
 std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator, vec2 uv) {
@@ -33,13 +30,11 @@ std::vector<Slice> compute_slices(const cpu::Evaluator& evaluator, vec2 uv) {
   ctx.uv = uv;
   for (float theta_o : kViewAngles) {
     Slice s{theta_o, {}, {}};
-    double o = radians(double(theta_o));
-    vec3 wo(float(std::sin(o)), 0.0f, float(std::cos(o)));
+    const vec3 wo = direction_in_plane(double(theta_o));
     for (int k = 0; k < count; ++k) {
       float theta_i = -kThetaLimit + kThetaStep * float(k);
-      double t = radians(double(theta_i));
       s.theta_i_deg.push_back(theta_i);
-      s.f.push_back(evaluator.eval(ctx, vec3(float(-std::sin(t)), 0.0f, float(std::cos(t))), wo));
+      s.f.push_back(evaluator.eval(ctx, direction_in_plane(-double(theta_i)), wo));
     }
     slices.push_back(std::move(s));
   }

@@ -1,13 +1,12 @@
 #include "graph/cpu/compare.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <functional>
-#include <numbers>
-#include <thread>
 
+#include "graph/cpu/frame.h"
 #include "graph/cpu/reference.h"
+#include "graph/parallel.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina::cpu {
 
@@ -16,31 +15,13 @@ namespace {
 using glm::dvec3;
 using glm::vec3;
 
-double luminance(dvec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
-
-vec3 in_plane(double theta_deg) {
-  const double t = theta_deg * std::numbers::pi / 180.0;
-  return vec3(float(std::sin(t)), 0.0f, float(std::cos(t)));
-}
+double luminance(dvec3 c) { return kernels::lamina_luminance(vec3(c)); }
 
 double relative_error(dvec3 model, dvec3 reference) {
   double worst = 0.0;
   for (int c = 0; c < 3; ++c)
     worst = std::max(worst, std::abs(model[c] - reference[c]) / std::max(reference[c], kCompareErrorFloor));
   return worst;
-}
-
-// Runs jobs 0..count-1 on every core; each job writes only its own result, so the outcome does not
-// depend on the schedule.
-void run_jobs(size_t count, const std::function<void(size_t)>& job) {
-  std::atomic<size_t> next{0};
-  const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 16);
-  std::vector<std::thread> pool;
-  for (size_t t = 0; t < threads; ++t)
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < count; i = next++) job(i);
-    });
-  for (std::thread& thread : pool) thread.join();
 }
 
 }  // namespace
@@ -61,18 +42,18 @@ Comparison compare_to_reference(const ShadingPoint& point, const CompareOptions&
   std::vector<std::pair<size_t, size_t>> points;
   for (size_t s = 0; s < out.slices.size(); ++s)
     for (size_t k = 0; k < out.slices[s].f.size(); ++k) points.emplace_back(s, k);
-  run_jobs(out.albedo.size() + points.size(), [&](size_t job) {
+  parallel_for(out.albedo.size() + points.size(), [&](size_t job) {
     if (job < out.albedo.size()) {
       AlbedoComparison& row = out.albedo[job];
-      const vec3 wo = in_plane(row.theta_deg);
+      const vec3 wo = direction_in_plane(row.theta_deg);
       const ReferenceEstimate r = reference_albedo(point, wo, {options.albedo_walks, 1000, options.seed});
       row.albedo = {dvec3(point.albedo(wo)), r.value, r.std_error};
       return;
     }
     const auto [s, k] = points[job - out.albedo.size()];
     SliceComparison& slice = out.slices[s];
-    const vec3 wo = in_plane(slice.theta_o_deg);
-    const vec3 wi = in_plane(-slice.theta_i_deg[k]);
+    const vec3 wo = direction_in_plane(slice.theta_o_deg);
+    const vec3 wi = direction_in_plane(-slice.theta_i_deg[k]);
     const ReferenceEstimate r = reference_eval(point, wi, wo, {options.slice_walks, 1000, options.seed});
     slice.f[k] = {dvec3(point.eval(wi, wo)), r.value, r.std_error};
   });

@@ -78,7 +78,8 @@ class ShadingPoint {
     const kernels::LaminaParams* params = nullptr;
   };
   Stack stack() const;
-  glm::vec3 local_direction(glm::vec3 w) const { return local(w); }
+  // A direction given as the queries take it, in the local frame the stack's kernels work in.
+  glm::vec3 local(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_local(w); }
 
   const Frame& frame() const { return frame_; }
   // The texture registers (Program::slot_count floats): two points with equal registers have the
@@ -88,7 +89,6 @@ class ShadingPoint {
  private:
   friend class Evaluator;
   explicit ShadingPoint(const Evaluator& evaluator) : evaluator_(&evaluator) {}
-  glm::vec3 local(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_local(w); }
   glm::vec3 world(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_world(w); }
   const kernels::LaminaParams* params() const;
   Local queries() const;

@@ -1,6 +1,7 @@
 #include "graph/cpu/frame.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace lamina {
 
@@ -24,6 +25,11 @@ Frame Frame::from_normal_tangent(glm::vec3 normal, glm::vec3 tangent) {
   }
   f.bitangent = glm::cross(f.normal, f.tangent);
   return f;
+}
+
+glm::vec3 direction_in_plane(double theta_deg) {
+  const double t = theta_deg * std::numbers::pi / 180.0;
+  return glm::vec3(float(std::sin(t)), 0.0f, float(std::cos(t)));
 }
 
 }  // namespace lamina

@@ -21,4 +21,9 @@ struct Frame {
   glm::vec3 to_world(glm::vec3 w) const { return w.x * tangent + w.y * bitangent + w.z * normal; }
 };
 
+// The local direction theta degrees from the normal in the plane of incidence (x, z):
+// (sin theta, 0, cos theta); negative angles lie on the -x side. The views of `lamina albedo`,
+// `plot` and `compare`, and their slices' lights.
+glm::vec3 direction_in_plane(double theta_deg);
+
 }  // namespace lamina

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
+#include "graph/parallel.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina::cpu {
@@ -81,13 +81,7 @@ std::vector<vec3> render_preview(const Evaluator& evaluator, int width, int heig
       pixels[size_t(row) * size_t(width) + size_t(x)] = k::lamina_preview_mean(sum);
     }
   };
-  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (int row = t; row < height; row += threads) shade_row(row);
-    });
-  for (std::thread& thread : pool) thread.join();
+  parallel_for(size_t(std::max(height, 0)), [&](size_t row) { shade_row(int(row)); });
   return pixels;
 }
 

@@ -349,15 +349,15 @@ ReferenceEstimate run(const ShadingPoint& point, uint64_t seed, const ReferenceO
 }  // namespace
 
 ReferenceEstimate reference_eval(const ShadingPoint& point, vec3 wi, vec3 wo, const ReferenceOptions& options) {
-  wi = point.local_direction(wi);
-  wo = point.local_direction(wo);
+  wi = point.local(wi);
+  wo = point.local(wo);
   if (!(wi.z > 0.0f && wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
   const uint64_t seed = hash_directions(wi, wo, options.seed);
   return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_eval(w, wi, wo, options.max_depth, t); });
 }
 
 ReferenceEstimate reference_albedo(const ShadingPoint& point, vec3 wo, const ReferenceOptions& options) {
-  wo = point.local_direction(wo);
+  wo = point.local(wo);
   if (!(wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
   const uint64_t seed = hash_directions(vec3(0.0f), wo, options.seed ^ 0xa1bed0ull);
   return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_albedo(w, wo, options.max_depth, t); });

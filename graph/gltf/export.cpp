@@ -3,17 +3,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <cmath>
-#include <exception>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <numbers>
 #include <set>
-#include <thread>
 
 #include "graph/compile.h"
 #include "graph/cpu/image.h"
@@ -24,6 +20,7 @@
 #include "graph/gltf/uri.h"
 #include "graph/json_read.h"
 #include "graph/json_write.h"
+#include "graph/parallel.h"
 
 namespace lamina::gltf {
 
@@ -390,25 +387,7 @@ class Writer {
       fallback_of_[object.material] = at->second;
     }
     fallbacks_.resize(programs.size());
-    std::atomic<size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    auto work = [&] {
-      for (size_t i = next++; i < programs.size(); i = next++) {
-        try {
-          fallbacks_[i] = fit_fallback(programs[i], options_.fallback);
-        } catch (...) {
-          std::lock_guard lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-        }
-      }
-    };
-    const size_t threads = std::min<size_t>(programs.size(), std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-    if (failure) std::rethrow_exception(failure);
+    parallel_for(programs.size(), [&](size_t i) { fallbacks_[i] = fit_fallback(programs[i], options_.fallback); });
   }
 
   // The canonical material as lamina writes it, and a glTF texture per texture/image node.

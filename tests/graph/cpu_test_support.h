@@ -7,7 +7,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -16,13 +15,13 @@
 #include <numbers>
 #include <random>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/load.h"
+#include "graph/parallel.h"
 
 namespace lamina::test {
 
@@ -342,15 +341,6 @@ class SphericalQuadrature {
 
 // Runs job(i) for i in [0, count) on a few threads. Jobs must not use doctest assertions: they
 // return their findings, which the calling thread checks.
-inline void parallel_for(size_t count, const std::function<void(size_t)>& job) {
-  size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-  std::vector<std::thread> pool;
-  std::atomic<size_t> next{0};
-  for (size_t t = 0; t < std::min(threads, count); ++t)
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < count; i = next++) job(i);
-    });
-  for (std::thread& thread : pool) thread.join();
-}
+using lamina::parallel_for;
 
 }  // namespace lamina::test
