@@ -27,6 +27,7 @@ class Compiler final : public InputSource {
     program_.name = g_.material().name;
     program_.source_file = file_;
     program_.clamp_lower_roughness = g_.material().clamp_lower_roughness.value_or(true);
+    program_.model = g_.material().model.value_or("weidlich_wilkie") == "energy_conserving" ? 1 : 0;
     for (size_t i : g_.topological_order()) {
       if (!g_.used(i)) continue;
       NodeKind kind = g_.decl(i).kind;

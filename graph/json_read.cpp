@@ -133,7 +133,7 @@ class Reader {
       error(pointer, "expected a material object, found " + json_kind(j));
       return m;
     }
-    check_keys(j, pointer, {"name", "class", "source", "notes", "clamp_lower_roughness", "surface", "nodes"});
+    check_keys(j, pointer, {"name", "class", "source", "notes", "clamp_lower_roughness", "model", "surface", "nodes"});
     if (auto name = j.find("name"); name == j.end()) {
       error(pointer, "missing \"name\"", "materials are looked up by name");
     } else if (!name->is_string() || !is_identifier(name->get<std::string>())) {
@@ -158,6 +158,12 @@ class Reader {
         error(pointer + "/clamp_lower_roughness", "expected true or false, found " + json_kind(*clamp));
     }
     m.notes = optional_string(j, pointer, "notes");
+    m.model = optional_string(j, pointer, "model");
+    if (m.model && *m.model != "energy_conserving" && *m.model != "weidlich_wilkie") {
+      error(pointer + "/model", "unknown model " + quote_excerpt(*m.model),
+            "the models are \"weidlich_wilkie\" (the default) and \"energy_conserving\"");
+      m.model.reset();
+    }
 
     if (auto surface = j.find("surface"); surface == j.end()) {
       error(pointer, "missing \"surface\"", "name the top of the stack, e.g. \"surface\": \"@coat\"");

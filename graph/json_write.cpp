@@ -45,6 +45,7 @@ class Writer {
     if (m.notes) fields.push_back(key(3, "notes") + quoted(*m.notes));
     if (m.clamp_lower_roughness)
       fields.push_back(key(3, "clamp_lower_roughness") + (*m.clamp_lower_roughness ? "true" : "false"));
+    if (m.model) fields.push_back(key(3, "model") + quoted(*m.model));
     fields.push_back(key(3, "surface") + quoted(to_string(m.surface)));
     std::string nodes = key(3, "nodes") + "[";
     for (size_t i = 0; i < m.nodes.size(); ++i) nodes += (i ? ",\n" : "\n") + indent(4) + node(m.nodes[i]);

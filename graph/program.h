@@ -99,6 +99,7 @@ struct Program {
   std::string name;         // the material's name
   std::string source_file;  // the file it came from
   bool clamp_lower_roughness = true;
+  int model = 0;  // LAMINA_MODEL_* of nodes/kernels/stack.glsl: 0 Weidlich-Wilkie, 1 energy-conserving
   int slot_count = 0;
   std::vector<TextureOp> ops;     // run in order; each reads only registers written before it
   std::vector<StackEntry> stack;  // depth first from the surface (entry 0): parents before children

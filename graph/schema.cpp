@@ -137,6 +137,11 @@ std::string material_schema(const NodeRegistry& registry) {
                         "raise each interface's roughness to at least the one above it (Elek sec. 3); default true"},
                        {"type", "boolean"},
                        {"default", true}}},
+                 {"model", Json{{"description",
+                                 "how the stack is composed: weidlich_wilkie (the seeds' model as they give it) or "
+                                 "energy_conserving (never reflects more than it receives, reciprocal)"},
+                                {"enum", Json::array({"weidlich_wilkie", "energy_conserving"})},
+                                {"default", "weidlich_wilkie"}}},
                  {"surface", schema_ref("link")},
                  {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", schema_ref("node")}}}}},
            {"required", Json::array({"name", "surface", "nodes"})},

@@ -16,7 +16,8 @@ namespace lamina::test {
 
 class RandomStacks {
  public:
-  explicit RandomStacks(uint32_t seed) : rng_(seed) {}
+  // conserving: whether materials may choose the energy-conserving model (it has no GLSL yet).
+  explicit RandomStacks(uint32_t seed, bool conserving = true) : rng_(seed), conserving_(conserving) {}
 
   // A material file with `count` materials named random_0, random_1, ...
   std::string file(int count) {
@@ -36,7 +37,8 @@ class RandomStacks {
     const std::string surface = stack(0);
     std::ostringstream m;
     m << R"({"name": ")" << name << R"(", "clamp_lower_roughness": )" << (chance(0.7) ? "true" : "false")
-      << R"(, "surface": "@)" << surface << R"(", "nodes": [)" << nodes_.str() << "]}";
+      << R"(, "model": ")" << (conserving_ && chance(0.5) ? "energy_conserving" : "weidlich_wilkie")
+      << R"(", "surface": "@)" << surface << R"(", "nodes": [)" << nodes_.str() << "]}";
     return m.str();
   }
 
@@ -174,6 +176,7 @@ class RandomStacks {
   int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
 
   std::mt19937 rng_;
+  bool conserving_ = true;
   std::ostringstream nodes_;
   int next_id_ = 0;
   int layers_left_ = 0;

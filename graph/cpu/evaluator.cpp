@@ -95,7 +95,8 @@ Evaluator::Evaluator(Program program) : program_(std::move(program)) {
       throw std::logic_error("Evaluator: an operation of '" + program_.name + "' cannot run");
   if (!program_.textured() && count_ > 0) {
     fixed_.resize(size_t(count_));
-    k::lamina_stack_resolve(count_, entries_.data(), constants_.data(), program_.clamp_lower_roughness, fixed_.data());
+    k::lamina_stack_resolve(count_, entries_.data(), constants_.data(), program_.clamp_lower_roughness, program_.model,
+                            fixed_.data());
   }
 }
 
@@ -115,7 +116,8 @@ void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point) const {
     if (s.scalar_z.linked()) x.scalars.z = read_float(s.scalar_z, r);
     if (s.normal.linked()) x.normal = read_vec3(s.normal, r);
   }
-  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), program_.clamp_lower_roughness, point.params_.data());
+  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), program_.clamp_lower_roughness, program_.model,
+                          point.params_.data());
   point.own_params_ = true;
 }
 
@@ -142,7 +144,11 @@ struct Local {
   const k::LaminaParams* params;
 
   // lamina_stack_eval returns 0 below the horizon itself.
-  vec3 eval(vec3 wi, vec3 wo) const { return k::lamina_stack_eval(count, entries, params, wi, wo); }
+  vec3 eval(vec3 wi, vec3 wo) const {
+    if (count > 0 && params[0].model == k::LAMINA_MODEL_ENERGY_CONSERVING)
+      return k::lamina_stack_eval_conserving(count, entries, params, wi, wo);
+    return k::lamina_stack_eval(count, entries, params, wi, wo);
+  }
   void select(vec3 wo, Selection& s) const {
     k::lamina_stack_select(count, entries, params, wo, s.weight.data(), s.v.data(), s.valid.data());
   }

@@ -220,7 +220,8 @@ class MaterialEmitter final : public OpWriter {
         x.push_back(kernel_constants(entry, true));
       }
       std::vector<kernels::LaminaParams> params(p_.stack.size());
-      kernels::lamina_stack_resolve(int(e.size()), e.data(), x.data(), p_.clamp_lower_roughness, params.data());
+      kernels::lamina_stack_resolve(int(e.size()), e.data(), x.data(), p_.clamp_lower_roughness, p_.model,
+                                    params.data());
       for (size_t i = 0; i < params.size(); ++i) {
         const kernels::LaminaParams& q = params[i];
         const std::string at = "  params[" + std::to_string(i) + "].";
@@ -237,7 +238,9 @@ class MaterialEmitter final : public OpWriter {
           << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
           << at << "n = " << vec3_literal(q.n) << ";\n"
           << at << "k = " << vec3_literal(q.k) << ";\n"
-          << at << "normal = " << vec3_literal(q.normal) << ";\n";
+          << at << "normal = " << vec3_literal(q.normal) << ";\n"
+          << at << "model = " << q.model << ";\n"
+          << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n";
       }
       s << "}\n\n";
       return s.str();
@@ -262,7 +265,7 @@ class MaterialEmitter final : public OpWriter {
       inputs << at << "normal = " << input(e.normal, folded.normal) << ";\n";
     }
     s << ops_.str() << inputs.str();
-    s << "  lamina_stack_resolve(" << count() << ", " << entries() << ", inputs, " << clamp_flag()
+    s << "  lamina_stack_resolve(" << count() << ", " << entries() << ", inputs, " << clamp_flag() << ", " << p_.model
       << ", params);\n}\n\n";
     return s.str();
   }
@@ -341,6 +344,11 @@ void validate(const Program& p) {
   }
   for (const TextureOp& op : p.ops)
     if (!op.decl || !op.decl->emit_glsl) bad("node \"" + op.node + "\" has no GLSL");
+  // Its dielectric albedo table as a GLSL constant array (tens of thousands of integers indexed at
+  // run time) takes Mesa minutes to compile: the table needs a texture or buffer first.
+  if (p.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING)
+    bad("\"model\": \"energy_conserving\" has no GLSL back end yet (the CPU evaluator has it); "
+        "use \"weidlich_wilkie\" for GLSL");
 }
 
 std::string header(std::span<const Program> programs, const Module& module, const Options& o) {
@@ -381,6 +389,40 @@ std::string header(std::span<const Program> programs, const Module& module, cons
   return s.str();
 }
 
+// The dielectric albedo table (nodes/kernels/energy.glsl) for the combinations of distribution and
+// Fresnel term the boundaries of energy-conserving materials use, with the integers C++ compiles
+// in, and where each starts (-1 for the others; the Weidlich-Wilkie composition never reads it).
+std::string albedo_tables(std::span<const Program> programs) {
+  std::vector<bool> used(size_t(kernels::LAMINA_ALBEDO_COMBOS), false);
+  for (const Program& p : programs)
+    for (const StackEntry& e : p.stack) {
+      if (p.model != kernels::LAMINA_MODEL_ENERGY_CONSERVING) continue;
+      const kernels::LaminaEntry k = kernel_entry(e, true);
+      if (k.kind == kernels::LAMINA_LAYER) used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
+    }
+  std::ostringstream offsets, values;
+  int length = 0;
+  for (int c = 0; c < kernels::LAMINA_ALBEDO_COMBOS; ++c) {
+    offsets << (c ? ", " : "") << (used[size_t(c)] ? length : -1);
+    if (!used[size_t(c)]) continue;
+    const int* table = kernels::LAMINA_DIELECTRIC_ALBEDO + kernels::LAMINA_DIELECTRIC_ALBEDO_OFFSET[c];
+    for (int i = 0; i < kernels::LAMINA_ALBEDO_COMBO_SIZE; ++i) {
+      values << (length ? "," : "") << ((length % 24 == 0) ? "\n  " : (length ? " " : "")) << table[i];
+      ++length;
+    }
+  }
+  if (length == 0) {  // no boundary: a one-entry table the lookups never reach
+    values << "\n  0";
+    length = 1;
+  }
+  std::ostringstream s;
+  s << "// The energy a rough dielectric boundary reflects, round(65535 E) (nodes/kernels/energy.glsl).\n";
+  s << "const int LAMINA_DIELECTRIC_ALBEDO_OFFSET[" << kernels::LAMINA_ALBEDO_COMBOS << "] = int["
+    << kernels::LAMINA_ALBEDO_COMBOS << "](" << offsets.str() << ");\n";
+  s << "const int LAMINA_DIELECTRIC_ALBEDO[" << length << "] = int[" << length << "](" << values.str() << ");\n\n";
+  return s.str();
+}
+
 }  // namespace
 
 Module generate(std::span<const Program> programs, const Options& options) {
@@ -412,7 +454,9 @@ Module generate(std::span<const Program> programs, const Options& options) {
   for (const auto& [name, text] : module_code) code += text;
   for (const std::string& body : bodies) code += body;
   if (options.sphere_shader) code += sphere_shader(module.materials.front().prefix);
-  s << needed_kernels(kernel_sources(), code) << code;
+  const std::string kernels = needed_kernels(kernel_sources(), code);
+  if (kernels.find("LAMINA_DIELECTRIC_ALBEDO") != std::string::npos) s << albedo_tables(programs);
+  s << kernels << code;
   module.source = s.str();
   return module;
 }

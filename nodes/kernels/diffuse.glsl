@@ -8,6 +8,13 @@ LAMINA_FN vec3 lambert(vec3 albedo) { return albedo * LAMINA_INV_PI; }
 // radiance (L1 + L2) divided by cos_i, times 1/pi. Symmetric in wi and wo; sigma = 0 gives
 // exactly lambert(albedo). Where the course's formula turns negative (sigma above about 0.65, both
 // directions near grazing on opposite sides of the normal) the result is clamped to 0.
+// The part of the course's Oren-Nayar BRDF that depends on neither direction, over albedo / pi:
+// C1 = 1 - 0.5 s2 / (s2 + 0.33), s2 = sigma^2 (Weidlich and Wilkie course, sec. 3.3.1).
+LAMINA_FN float oren_nayar_uniform(float sigma) {
+  float s2 = sigma * sigma;
+  return 1.0f - 0.5f * s2 / (s2 + 0.33f);
+}
+
 LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return vec3(0.0f);
   // alpha = max(theta_i, theta_o) has the smaller cosine, beta = min(theta_i, theta_o) the larger.
@@ -33,7 +40,7 @@ LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   float s2 = sigma * sigma;
   float two_beta_over_pi = 2.0f * beta * LAMINA_INV_PI;
   // Weidlich and Wilkie course, sec. 3.3.1 (Gritz's shader):
-  // C1 = 1 - 0.5 s2 / (s2 + 0.33),
+  // C1 = oren_nayar_uniform,
   // C2 = 0.45 s2 / (s2 + 0.09) sin(alpha)                        if cos_phi >= 0,
   //      0.45 s2 / (s2 + 0.09) (sin(alpha) - (2 beta / pi)^3)    otherwise,
   // C3 = 0.125 s2 / (s2 + 0.09) (4 alpha beta / pi^2)^2.
@@ -43,7 +50,7 @@ LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   // is x (3 - 3x + x^2) - cos^2(alpha) / (1 + sin(alpha)), and keeps its digits.
   float x = 2.0f * LAMINA_INV_PI * atan(cos_beta, sin_beta);
   float opposite = x * (3.0f - 3.0f * x + x * x) - cos_alpha * cos_alpha / (1.0f + sin_alpha);
-  float c1 = 1.0f - 0.5f * s2 / (s2 + 0.33f);
+  float c1 = oren_nayar_uniform(sigma);
   float c2 = 0.45f * s2 / (s2 + 0.09f) * (cos_phi >= 0.0f ? sin_alpha : opposite);
   float c3 = 0.125f * s2 / (s2 + 0.09f) * lamina_sqr(4.0f * alpha * beta * LAMINA_INV_PI * LAMINA_INV_PI);
   // Same section: L1 / cos_i = albedo (C1 + cos_phi C2 tan(beta) + (1 - |cos_phi|) C3 tan((alpha + beta) / 2)),

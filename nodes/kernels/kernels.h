@@ -40,6 +40,21 @@ using namespace glm;
 #include "nodes/kernels/microfacet.glsl"
 #include "nodes/kernels/diffuse.glsl"
 #include "nodes/kernels/layer.glsl"
+#include "nodes/kernels/albedo_grid.glsl"
+// clang-format on
+
+// The dielectric albedo table (energy.glsl), every combination, in LAMINA_ALBEDO_COMBOS blocks.
+inline constexpr int LAMINA_DIELECTRIC_ALBEDO[] = {
+#include "nodes/kernels/dielectric_albedo.inc"
+};
+static_assert(sizeof(LAMINA_DIELECTRIC_ALBEDO) / sizeof(int) == size_t(LAMINA_ALBEDO_COMBOS) * LAMINA_ALBEDO_COMBO_SIZE,
+              "nodes/kernels/dielectric_albedo.inc does not match the grid of albedo_grid.glsl");
+inline constexpr int LAMINA_DIELECTRIC_ALBEDO_OFFSET[LAMINA_ALBEDO_COMBOS] = {
+    0 * LAMINA_ALBEDO_COMBO_SIZE, 1 * LAMINA_ALBEDO_COMBO_SIZE, 2 * LAMINA_ALBEDO_COMBO_SIZE,
+    3 * LAMINA_ALBEDO_COMBO_SIZE, 4 * LAMINA_ALBEDO_COMBO_SIZE, 5 * LAMINA_ALBEDO_COMBO_SIZE};
+
+// clang-format off
+#include "nodes/kernels/energy.glsl"
 #include "nodes/kernels/boundary.glsl"
 #include "nodes/kernels/microsurface.glsl"
 #include "nodes/kernels/texture.glsl"

@@ -194,6 +194,10 @@ LAMINA_FN float g_microfacet(int distribution, float cos_l, float cos_v, float c
   return g_vcavity(cos_l, cos_v, cos_h, v_dot_h);
 }
 
+// V.H and L.H are equal in exact arithmetic; their mean is bitwise the same when L and V swap, so
+// rounding cannot break reciprocity where L + V nearly cancels (grazing, opposite directions).
+LAMINA_FN float lamina_symmetric_dot(vec3 l, vec3 v, vec3 h) { return 0.5f * (dot(v, h) + dot(l, h)); }
+
 LAMINA_FN vec3 torrance_sparrow(vec3 F, float D, float G, float cos_l, float cos_v) {
   if (cos_l <= 0.0f || cos_v <= 0.0f) return vec3(0.0f);
   // Weidlich and Wilkie course, eq. 2.1 (Walter et al. 2007, eq. 20): f = F D G / (4 cos_l cos_v).

@@ -16,10 +16,6 @@ LAMINA_FN float lamina_effective_slope(float own, float above, bool clamp_lower)
   return max(clamp_lower ? max(own, above) : own, LAMINA_MIN_SLOPE);
 }
 
-// V.H and L.H are equal in exact arithmetic; their mean is bitwise the same when L and V swap, so
-// rounding cannot break reciprocity where L + V nearly cancels (grazing, opposite directions).
-LAMINA_FN float lamina_symmetric_dot(vec3 l, vec3 v, vec3 h) { return 0.5f * (dot(v, h) + dot(l, h)); }
-
 // One interface of the recursion f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i (course
 // sec. 3.1, Elek eq. 2). Returns f_i, the Torrance-Sparrow reflection of the interface with F_i
 // at V.H (the Fresnel term `fresnel` selects: lamina_fresnel_dielectric). l_below and v_below
@@ -213,6 +209,10 @@ struct LaminaInputs {
   vec3 normal;
 };
 
+// How a material composes its stack (its "model").
+const int LAMINA_MODEL_WEIDLICH_WILKIE = 0;    // lamina_stack_eval, as the seeds give it
+const int LAMINA_MODEL_ENERGY_CONSERVING = 1;  // lamina_stack_eval_conserving
+
 // An entry's parameters at one shading point, with what the entries above it pass down.
 struct LaminaParams {
   float n_above;    // absolute index of the medium above the entry (1 at the top)
@@ -228,13 +228,121 @@ struct LaminaParams {
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
   vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
+  int model;        // the material's LAMINA_MODEL_*, the same in every entry
+  vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
 };
+
+// --- the energy-conserving composition ---------------------------------------------------------
+// Each entry's BRDF is split in two parts: f(l, v) = s(l, v) + c u(l) u(v), where the second, the
+// diffuse part, is light that has lost its direction in a diffuse substrate, and c is a constant of
+// the entry (LaminaParams.diffuse). A diffuse substrate has u = 1 and c = albedo / pi (Oren-Nayar:
+// its direction-free C1 share) and s = f - c; a conductor only s; a mix only s (both its stacks
+// whole). A layer of relative index eta over a base B, with T(mu) = 1 - E(mu) the energy its boundary
+// lets through (energy.glsl) and t(mu') = exp(-sigma d / mu') the medium's one-way transmittance:
+//   s(l, v) = f_boundary(l, v) + T(l) t(l') T(v) t(v') / eta^2 s_B(l', v'),
+// f_boundary being lamina_boundary_reflection,
+//   u(w) = T(w) t(w') u_B(w'),   c = c_B / (eta^2 (1 - K)).
+// The 1 / eta^2 is the radiance a ray loses crossing out of the denser medium (Veach 1997, sec.
+// 5.2): with it the base's light leaves the layer with exactly the energy it had below. K is the
+// share of the diffuse light the base sends up that comes back to it after reflecting off the
+// boundary from below (totally outside the exit cone, E(mu_out) inside), so c sums every round
+// trip, 1 + K + K^2 + ...: a Lambert base's light bounces under the boundary until it leaves or is
+// absorbed, which is most of the energy of a white base under a clear coat. Light the specular
+// part s sends into the boundary from below is not followed further (it is lost, never created).
+// Every factor is symmetric in l and v, so the sum is reciprocal; each step passes on at most the
+// energy it received (R + T = 1 at the boundary, t <= 1, and a base's diffuse reflectance at most
+// 1), so no stack reflects more than it receives.
+
+// The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
+// refract_down computes it; 0 when it cannot enter.
+LAMINA_FN float lamina_cosine_below(float mu, float eta) {
+  float inv_eta = 1.0f / eta;
+  float sin2_below = (1.0f - mu * mu) * inv_eta * inv_eta;
+  if (mu <= 0.0f || sin2_below > 1.0f) return 0.0f;
+  return sqrt(1.0f - sin2_below);
+}
+
+// What passes one way through a layer for a direction of cosine mu above it whose refracted cosine
+// is mu_below (<= 0: it cannot enter): T(mu) t(mu_below).
+LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below) {
+  if (mu_below <= 0.0f) return vec3(0.0f);
+  float transmittance = 1.0f - lamina_dielectric_albedo(e.distribution, e.fresnel, mu, p.m, p.eta);
+  return transmittance * one_way_absorption(p.absorption, p.thickness, mu_below);
+}
+
+// u(mu) of the entry `start`: the passages down the chain of layers to its diffuse substrate.
+LAMINA_FN vec3 lamina_diffuse_profile(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                      LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int start, float mu) {
+  vec3 u = vec3(1.0f);
+  float c = mu;
+  int j = start;
+  for (int n = 0; n < LAMINA_STACK; ++n) {
+    if (j < 0 || entries[j].kind != LAMINA_LAYER) break;
+    float below = lamina_cosine_below(c, params[j].eta);
+    u = u * lamina_layer_passage(entries[j], params[j], c, below);
+    c = below;
+    j = entries[j].first;
+  }
+  return u;
+}
+
+// Gauss-Legendre nodes and weights on [0, 1], five points (exact for polynomials of degree 9).
+LAMINA_FN float lamina_gauss5_node(int i) {
+  float x = i == 0 ? -0.906179845938664f
+          : i == 1 ? -0.538469310105683f
+          : i == 2 ? 0.0f
+          : i == 3 ? 0.538469310105683f
+                   : 0.906179845938664f;
+  return 0.5f + 0.5f * x;
+}
+LAMINA_FN float lamina_gauss5_weight(int i) {
+  float w = (i == 0 || i == 4) ? 0.236926885056189f : (i == 1 || i == 3) ? 0.478628670499366f : 0.568888888888889f;
+  return 0.5f * w;
+}
+
+// c of layer i from its base's: U = int u_B cos, W = int u_B t^2 R cos over the hemisphere under the
+// boundary (R = 1 outside the exit cone, E(mu_out) inside it, integrated over mu_out, where the
+// integrand is smooth: mu dmu = mu_out dmu_out / eta^2), K = c_B U W / pi.
+LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                          LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  int base = entries[i].first;
+  vec3 c_base = params[base].diffuse;
+  if (c_base.x <= 0.0f && c_base.y <= 0.0f && c_base.z <= 0.0f) return vec3(0.0f);
+  float eta = params[i].eta;
+  float inv_eta2 = 1.0f / (eta * eta);
+  float mu_critical = lamina_safe_sqrt(1.0f - inv_eta2);  // beyond it (mu < mu_critical) light stays
+  float mu_out_least = lamina_safe_sqrt(1.0f - eta * eta);  // the outer cosine of a grazing ray below
+  vec3 u_sum = vec3(0.0f);
+  vec3 w_sum = vec3(0.0f);
+  for (int q = 0; q < 5; ++q) {
+    float weight = lamina_gauss5_weight(q);
+    // Totally reflected: mu in [0, mu_critical].
+    float mu = mu_critical * lamina_gauss5_node(q);
+    vec3 u = lamina_diffuse_profile(entries, params, base, mu);
+    vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu);
+    u_sum += (weight * mu_critical * mu) * u;
+    w_sum += (weight * mu_critical * mu) * u * t * t;
+    // Inside the cone, by the outer cosine.
+    float mu_out = mix(mu_out_least, 1.0f, lamina_gauss5_node(q));
+    float mu_in = lamina_safe_sqrt(1.0f - (1.0f - mu_out * mu_out) * inv_eta2);
+    float reflected = lamina_dielectric_albedo(entries[i].distribution, entries[i].fresnel, mu_out, params[i].m, eta);
+    u = lamina_diffuse_profile(entries, params, base, mu_in);
+    t = one_way_absorption(params[i].absorption, params[i].thickness, mu_in);
+    float span = (1.0f - mu_out_least) * inv_eta2;
+    u_sum += (weight * span * mu_out) * u;
+    w_sum += (weight * span * mu_out * reflected) * u * t * t;
+  }
+  // U = 2 pi u_sum, W = 2 pi w_sum.
+  vec3 k = c_base * (4.0f * LAMINA_PI) * u_sum * w_sum;
+  return c_base * inv_eta2 / max(vec3(1.0f) - k, vec3(1.0e-6f));
+}
 
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
 // slope to the entries below it, a mix passes on what it received. clamp_lower: Elek's rule that
-// raises each slope to at least the one above it.
+// raises each slope to at least the one above it. model: LAMINA_MODEL_*; for the energy-conserving
+// one, bottom up, every entry's diffuse coefficient (lamina_diffuse_coefficient).
 LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_STACK], bool clamp_lower,
+                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_STACK], bool clamp_lower, int model,
                                     LAMINA_OUT_ARRAY(LaminaParams) params[LAMINA_STACK]) {
   for (int i = 0; i < count; ++i) {
     LaminaParams p;
@@ -257,6 +365,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
     p.normal = inputs[i].normal;
+    p.model = model;
+    p.diffuse = vec3(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -278,8 +388,15 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     } else {
       p.albedo = inputs[i].colour0;
       p.sigma = inputs[i].scalars.x;
+      // A diffuse substrate's direction-free part: Lambert's albedo / pi, Oren-Nayar's C1 share of it.
+      float uniform_share = entries[i].model == LAMINA_SUBSTRATE_OREN_NAYAR ? oren_nayar_uniform(p.sigma) : 1.0f;
+      p.diffuse = p.albedo * (uniform_share * LAMINA_INV_PI);
     }
     params[i] = p;
+  }
+  if (model != LAMINA_MODEL_ENERGY_CONSERVING) return;
+  for (int i = count - 1; i >= 0; --i) {
+    if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
   }
 }
 
@@ -355,6 +472,65 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
     }
   }
   return max(s[0].f, vec3(0.0f));
+}
+
+// The energy-conserving composition (see lamina_diffuse_coefficient): the same two passes, where
+// every entry carries its specular part s and its diffuse profiles u(l), u(v) (0 where unreached).
+// A back end calls it or lamina_stack_eval by the material's model (LaminaParams.model), constant
+// per material.
+LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                            LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+  if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
+  if (count == 1) return max(lamina_substrate_eval(entries[0], params[0], wi, wo), vec3(0.0f));
+  LaminaEvalStep s[LAMINA_STACK];  // f holds s; carry T(l) t(l') T(v) t(v') / eta^2
+  vec3 u_l[LAMINA_STACK];          // a layer's passage for l, then (bottom up) the entry's u(l)
+  vec3 u_v[LAMINA_STACK];
+  for (int i = 0; i < count; ++i) {
+    int parent = entries[i].parent;
+    vec3 l = parent < 0 ? wi : s[parent].l_on;
+    vec3 v = parent < 0 ? wo : s[parent].v_on;
+    s[i].f = vec3(0.0f);
+    s[i].carry = vec3(0.0f);
+    s[i].l_on = vec3(0.0f);
+    s[i].v_on = vec3(0.0f);
+    u_l[i] = vec3(0.0f);
+    u_v[i] = vec3(0.0f);
+    if (l.z <= 0.0f || v.z <= 0.0f) continue;
+    int kind = entries[i].kind;
+    if (kind == LAMINA_LAYER) {
+      vec3 lb = refract_down(l, params[i].eta);
+      vec3 vb = refract_down(v, params[i].eta);
+      s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
+                                               params[i].m));
+      s[i].l_on = lb;
+      s[i].v_on = vb;
+      u_l[i] = lamina_layer_passage(entries[i], params[i], l.z, lb.z);
+      u_v[i] = lamina_layer_passage(entries[i], params[i], v.z, vb.z);
+      s[i].carry = u_l[i] * u_v[i] / (params[i].eta * params[i].eta);
+    } else if (kind == LAMINA_MIX) {
+      s[i].l_on = l;
+      s[i].v_on = v;
+    } else {
+      s[i].f = lamina_substrate_eval(entries[i], params[i], l, v) - params[i].diffuse;
+      u_l[i] = vec3(1.0f);
+      u_v[i] = vec3(1.0f);
+    }
+  }
+  for (int i = count - 1; i >= 0; --i) {
+    int kind = entries[i].kind;
+    if (kind == LAMINA_LAYER) {
+      int b = entries[i].first;
+      s[i].f = s[i].f + s[b].f * s[i].carry;
+      u_l[i] = u_l[i] * u_l[b];
+      u_v[i] = u_v[i] * u_v[b];
+    } else if (kind == LAMINA_MIX) {
+      int a = entries[i].first;
+      int b = entries[i].second;
+      s[i].f = mix(s[a].f + params[a].diffuse * u_l[a] * u_v[a], s[b].f + params[b].diffuse * u_l[b] * u_v[b],
+                   params[i].weight);
+    }
+  }
+  return max(s[0].f + params[0].diffuse * u_l[0] * u_v[0], vec3(0.0f));
 }
 
 // Lobe selection at wo (course sec. 3.2.3): each lobe's estimated share of the reflected energy:

@@ -243,8 +243,8 @@ bool mutate_text(std::string& text, const Vocabulary& v, std::mt19937& rng) {
 
 Vocabulary material_vocabulary() {
   Vocabulary v;
-  v.keys = {"$schema", "format", "materials", "name", "class", "source", "notes", "clamp_lower_roughness",
-            "surface", "nodes",  "id",        "type"};
+  v.keys = {"$schema", "format",  "materials", "name", "class", "source", "notes", "clamp_lower_roughness",
+            "model",   "surface", "nodes",     "id",   "type"};
   for (const NodeDecl& decl : NodeRegistry::builtin().all()) {
     v.strings.push_back(decl.type);
     for (const ParamDecl& p : decl.params) {
@@ -257,6 +257,7 @@ Vocabulary material_vocabulary() {
   }
   for (char c = 'a'; c <= 'h'; ++c) v.strings.push_back(std::string(1, c));
   v.strings.push_back("textures/patina_mask.png");
+  for (const char* model : {"weidlich_wilkie", "energy_conserving"}) v.strings.push_back(model);
   add_boundary_numbers(v.numbers);
   finish(v);
   return v;

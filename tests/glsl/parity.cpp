@@ -484,7 +484,7 @@ int main(int argc, char** argv) {
   }
   if (random_count > 0) {
     const std::string name = "random stacks (seed " + std::to_string(random_seed) + ")";
-    const std::string text = test::RandomStacks(random_seed).file(random_count);
+    const std::string text = test::RandomStacks(random_seed, false).file(random_count);
     CheckedFile checked = check_text(text, name);
     for (const Diagnostic& d : checked.diagnostics.errors()) std::printf("generator bug: %s\n", format(d).c_str());
     if (checked.ok()) {

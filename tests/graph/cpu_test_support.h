@@ -37,6 +37,17 @@ inline constexpr int kSanitizerDivisor = 1;
 
 inline constexpr double kPi = std::numbers::pi;
 
+// The unpolarised Fresnel reflectance of a smooth dielectric of relative index eta, in double, written
+// apart from the kernels (Born and Wolf, Principles of Optics, sec. 1.5.2); 1 under total reflection.
+inline double fresnel_reference(double cos_i, double eta) {
+  double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+  if (sin2_t >= 1.0) return 1.0;
+  double cos_t = std::sqrt(1.0 - sin2_t);
+  double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
 inline double radians(double degrees) { return degrees * kPi / 180.0; }
 inline double degrees(double radians) { return radians * 180.0 / kPi; }
 

@@ -108,7 +108,7 @@ void main() {
     inputs[i].normal = vec3(0.0f, 0.0f, 1.0f);
   }
   LaminaParams params[LAMINA_STACK];
-  lamina_stack_resolve(LAMINA_STACK, entries, inputs, true, params);
+  lamina_stack_resolve(LAMINA_STACK, entries, inputs, true, int(c > 0.5f), params);
   float weight[LAMINA_STACK];
   vec3 sv[LAMINA_STACK];
   bool valid[LAMINA_STACK];
@@ -117,6 +117,12 @@ void main() {
   s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(entries, params, sv, chosen, v_uv);
   s += lamina_substrate_eval(entries[2], params[2], w, v);
   f += lamina_stack_pdf(LAMINA_STACK, entries, params, weight, sv, valid, w, v);
+  // energy
+  f += lamina_dielectric_albedo(0, 0, c, m, 1.5f) + lamina_albedo_node_eta(1) + lamina_albedo_node_slope(1);
+  f += lamina_boundary_reflection(w, v, 1.5f, 1, 0, m);
+  f += lamina_albedo_node_cosine(1, 0.7f) + lamina_albedo_axis_cosine(c, 0.7f) + oren_nayar_uniform(0.3f);
+  s += one_way_absorption(vec3(0.1f), 0.5f, c) + lamina_diffuse_profile(entries, params, 0, c);
+  s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
 }
@@ -135,6 +141,12 @@ for target in 330 450 es300; do
     # The one macro the back end defines: the length of the stack's arrays (common.glsl defines
     # the others).
     echo "#define LAMINA_STACK 4"
+    # and the dielectric albedo table (energy.glsl), here every combination of it.
+    numbers=$(grep -v '^//' "$kernels/dielectric_albedo.inc" | tr -d ' \n')
+    count=$(($(tr -cd ',' <<<"$numbers" | wc -c) + 1))
+    size=$((count / 6))
+    echo "const int LAMINA_DIELECTRIC_ALBEDO_OFFSET[6] = int[6](0, $size, $((2 * size)), $((3 * size)), $((4 * size)), $((5 * size)));"
+    echo "const int LAMINA_DIELECTRIC_ALBEDO[$count] = int[$count]($numbers);"
     # The files in the order kernels.h includes them, the one list of kernel files.
     for f in $(sed -n 's|^#include "nodes/kernels/\(.*\.glsl\)"$|\1|p' "$kernels/kernels.h"); do
       cat "$kernels/$f"
