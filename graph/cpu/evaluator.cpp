@@ -142,10 +142,11 @@ struct Local {
   int count;
   const k::LaminaEntry* entries;
   const k::LaminaParams* params;
+  int model;  // the program's LAMINA_MODEL_*
 
   // lamina_stack_eval returns 0 below the horizon itself.
   vec3 eval(vec3 wi, vec3 wo) const {
-    if (count > 0 && params[0].model == k::LAMINA_MODEL_ENERGY_CONSERVING)
+    if (model == k::LAMINA_MODEL_ENERGY_CONSERVING)
       return k::lamina_stack_eval_conserving(count, entries, params, wi, wo);
     return k::lamina_stack_eval(count, entries, params, wi, wo);
   }
@@ -179,7 +180,9 @@ ShadingPoint::Stack ShadingPoint::stack() const {
   return Stack{evaluator_->count_, evaluator_->entries_.data(), params()};
 }
 
-Local ShadingPoint::queries() const { return Local{evaluator_->count_, evaluator_->entries_.data(), params()}; }
+Local ShadingPoint::queries() const {
+  return Local{evaluator_->count_, evaluator_->entries_.data(), params(), evaluator_->program_.model};
+}
 
 vec3 ShadingPoint::eval(vec3 wi, vec3 wo) const { return queries().eval(local(wi), local(wo)); }
 
@@ -271,12 +274,14 @@ namespace {
 
 vec3 Evaluator::eval(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
   // The hot path: an untextured material in the local frame needs no bound point.
-  if (!program_.textured() && default_frame(ctx)) return Local{count_, entries_.data(), fixed_.data()}.eval(wi, wo);
+  if (!program_.textured() && default_frame(ctx))
+    return Local{count_, entries_.data(), fixed_.data(), program_.model}.eval(wi, wo);
   return bound_eval(*this, ctx, wi, wo);
 }
 
 float Evaluator::pdf(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
-  if (!program_.textured() && default_frame(ctx)) return Local{count_, entries_.data(), fixed_.data()}.pdf(wi, wo);
+  if (!program_.textured() && default_frame(ctx))
+    return Local{count_, entries_.data(), fixed_.data(), program_.model}.pdf(wi, wo);
   return bound_pdf(*this, ctx, wi, wo);
 }
 

@@ -239,7 +239,6 @@ class MaterialEmitter final : public OpWriter {
           << at << "n = " << vec3_literal(q.n) << ";\n"
           << at << "k = " << vec3_literal(q.k) << ";\n"
           << at << "normal = " << vec3_literal(q.normal) << ";\n"
-          << at << "model = " << q.model << ";\n"
           << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n";
       }
       s << "}\n\n";

@@ -228,7 +228,6 @@ struct LaminaParams {
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
   vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
-  int model;        // the material's LAMINA_MODEL_*, the same in every entry
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
 };
 
@@ -365,7 +364,6 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
     p.normal = inputs[i].normal;
-    p.model = model;
     p.diffuse = vec3(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
@@ -476,8 +474,7 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
 
 // The energy-conserving composition (see lamina_diffuse_coefficient): the same two passes, where
 // every entry carries its specular part s and its diffuse profiles u(l), u(v) (0 where unreached).
-// A back end calls it or lamina_stack_eval by the material's model (LaminaParams.model), constant
-// per material.
+// A back end calls it or lamina_stack_eval by the material's model, constant per material.
 LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                             LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
