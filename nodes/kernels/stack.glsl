@@ -82,8 +82,10 @@ LAMINA_FN float lamina_reflection_density(int distribution, float m, vec3 v, vec
   if (len < 1.0e-7f) return 0.0f;
   vec3 h = sum / len;
   if (h.z < 0.0f) h = -h;
-  float v_dot_h = abs(dot(v, h));
-  if (v_dot_h <= 0.0f) return 0.0f;
+  // |v.h| = (1 + v.w) / |v + w| = |v + w| / 2 for unit v and w. The dot product would cancel where
+  // w nears -v (the folded half's integrable singularity at the mirror direction): there 1 + v.w is
+  // the difference of nearly equal numbers, and the density came out with 0.5% noise.
+  float v_dot_h = 0.5f * len;
   // pdf_microfacet_normal (D cos_h) with D from h's components, as in the evaluation.
   return d_microfacet_h(distribution, h, m) * h.z / (4.0f * v_dot_h);
 }
