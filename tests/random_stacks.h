@@ -1,6 +1,6 @@
 // Random valid materials, for tests that must hold for every stack and not only the examples: a
 // seeded generator of material files whose stacks nest layers (with clear, absorbing or no media)
-// and mixes over every substrate, with every distribution and Fresnel term, both roughness forms,
+// and mixes over every substrate, with every distribution and Fresnel term, both models and roughness forms,
 // and some parameters driven by textures (a checker, remapped into the parameter's range). The
 // checker must accept every file it writes; a refusal is a generator bug the caller reports.
 // Every random draw is a statement of its own: the operands of + are evaluated in an order each
@@ -16,8 +16,7 @@ namespace lamina::test {
 
 class RandomStacks {
  public:
-  // conserving: whether materials may choose the energy-conserving model (it has no GLSL yet).
-  explicit RandomStacks(uint32_t seed, bool conserving = true) : rng_(seed), conserving_(conserving) {}
+  explicit RandomStacks(uint32_t seed) : rng_(seed) {}
 
   // A material file with `count` materials named random_0, random_1, ...
   std::string file(int count) {
@@ -37,8 +36,8 @@ class RandomStacks {
     const std::string surface = stack(0);
     std::ostringstream m;
     m << R"({"name": ")" << name << R"(", "clamp_lower_roughness": )" << (chance(0.7) ? "true" : "false")
-      << R"(, "model": ")" << (conserving_ && chance(0.5) ? "energy_conserving" : "weidlich_wilkie")
-      << R"(", "surface": "@)" << surface << R"(", "nodes": [)" << nodes_.str() << "]}";
+      << R"(, "model": ")" << (chance(0.5) ? "energy_conserving" : "weidlich_wilkie") << R"(", "surface": "@)"
+      << surface << R"(", "nodes": [)" << nodes_.str() << "]}";
     return m.str();
   }
 
@@ -176,7 +175,6 @@ class RandomStacks {
   int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
 
   std::mt19937 rng_;
-  bool conserving_ = true;
   std::ostringstream nodes_;
   int next_id_ = 0;
   int layers_left_ = 0;

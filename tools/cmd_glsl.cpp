@@ -1,8 +1,9 @@
 // lamina glsl FILE [--material NAME] [--target 330|450|es300] [--uniforms] [--shader sphere]
 //             [--interface FILE] -o OUT
 // The material(s) as one GLSL module (graph/glsl/generator.h), plus a JSON side file describing
-// the uniform blocks and samplers: with --uniforms it is OUT with its extension replaced by
-// .uniforms.json (car.glsl -> car.uniforms.json), or --interface FILE names it.
+// the uniform blocks, samplers and tables: with --uniforms, or when a material's model reads a
+// table, it is OUT with its extension replaced by .uniforms.json (car.glsl -> car.uniforms.json),
+// or --interface FILE names it.
 #include <iostream>
 #include <vector>
 
@@ -37,21 +38,6 @@ int run_glsl(const GlslOptions& o) {
     return kExitInvalid;
   }
   const bool to_stdout = o.output == "-";
-  fs::path side;
-  if (!o.interface_file.empty())
-    side = o.interface_file;
-  else if (o.uniforms && !to_stdout)
-    side = default_side_file(o.output);
-  if (o.uniforms && side.empty()) {
-    std::cerr << "lamina: glsl: --uniforms with -o - needs --interface FILE for the JSON side file (the module "
-                 "goes to standard output)\n";
-    return kExitInvalid;
-  }
-  if (!side.empty() && !to_stdout && side.lexically_normal() == fs::path(o.output).lexically_normal()) {
-    print_problem("glsl: --interface names the GLSL output " + o.output + "; give the side file its own name");
-    return kExitInvalid;
-  }
-
   options.uniforms = o.uniforms;
   options.sphere_shader = o.shader == "sphere";
   std::vector<Program> programs;
@@ -61,6 +47,27 @@ int run_glsl(const GlslOptions& o) {
     module = glsl::generate(programs, options);
   } catch (const std::invalid_argument& e) {
     print_problem(o.material.file + ": " + e.what());
+    return kExitInvalid;
+  }
+
+  // The side file: named by --interface, or next to OUT when the host needs it (the uniform
+  // blocks' layout, a table's texels).
+  const bool needs_side = o.uniforms || !module.tables.empty();
+  fs::path side;
+  if (!o.interface_file.empty())
+    side = o.interface_file;
+  else if (needs_side && !to_stdout)
+    side = default_side_file(o.output);
+  if (needs_side && side.empty()) {
+    print_problem("glsl: " + o.material.file + ": " +
+                  (o.uniforms ? std::string("--uniforms")
+                              : "the module reads the dielectric albedo table (\"model\": \"energy_conserving\")") +
+                  " with -o - needs --interface FILE for the JSON side file the host binds from (the module goes to "
+                  "standard output)");
+    return kExitInvalid;
+  }
+  if (!side.empty() && !to_stdout && side.lexically_normal() == fs::path(o.output).lexically_normal()) {
+    print_problem("glsl: --interface names the GLSL output " + o.output + "; give the side file its own name");
     return kExitInvalid;
   }
 
@@ -90,11 +97,13 @@ void add_glsl(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"sphere"}));
   cmd->add_option("-o,--output", o->output, "the GLSL file to write, - for standard output")->required();
   cmd->add_option("--interface", o->interface_file,
-                  "write the JSON side file (uniform blocks and samplers) here, with or without --uniforms; needed "
-                  "for --uniforms with -o -");
+                  "write the JSON side file (uniform blocks, samplers, tables) here, with or without --uniforms; "
+                  "needed with -o - for --uniforms or a module that reads a table");
   cmd->footer(
       "Nothing is written when the file is invalid, and the module and its side file are written together or not "
-      "at all. With several materials and --shader sphere, the sphere shows the first one.");
+      "at all. Energy-conserving materials read a table the host binds as a texture: its texels are in the side "
+      "file, written next to OUT unless --interface names it. With several materials and --shader sphere, the sphere "
+      "shows the first one.");
   cmd->callback([o, &runner] { runner = [o] { return run_glsl(*o); }; });
 }
 

@@ -160,6 +160,10 @@ class MaterialEmitter final : public OpWriter {
   // An untextured material in an inlined module: its parameters are constants, resolved here by
   // the kernels the CPU runs (to the bit), so the module holds them instead of their inputs.
   bool fixed() const { return !p_.textured() && !o_.uniforms; }
+  // The kernels' composition of the material's model, as the CPU evaluator chooses it.
+  const char* composition() const {
+    return p_.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "lamina_stack_eval_conserving" : "lamina_stack_eval";
+  }
 
   // A member of the uniform block holding `value`, named after the node and parameter that gave it;
   // a node shared by several entries keeps one member.
@@ -291,7 +295,7 @@ class MaterialEmitter final : public OpWriter {
     s << "// The BRDF f(wi, wo) of \"" << p_.name << "\", without the cosine; 0 below the horizon.\n";
     s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params;
-    s << "  return lamina_stack_eval(" << stack << ", wi, wo);\n}\n\n";
+    s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
     s << "// The density (per solid angle) with which " << fn("sample") << " draws wi.\n";
     s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << params << select;
@@ -305,7 +309,7 @@ class MaterialEmitter final : public OpWriter {
     s << "  vec3 d = lamina_stack_sample(" << entries() << ", params, v, chosen, u);\n";
     s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
     s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
-    s << "  return lamina_stack_eval(" << stack << ", wi, wo);\n}\n\n";
+    s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
     s << "// The same at a texture coordinate alone (the other members of the context at their defaults).\n";
     s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, vec2 uv) {\n  return " << fn("eval")
       << "(wi, wo, lamina_context(uv));\n}\n\n";
@@ -343,11 +347,6 @@ void validate(const Program& p) {
   }
   for (const TextureOp& op : p.ops)
     if (!op.decl || !op.decl->emit_glsl) bad("node \"" + op.node + "\" has no GLSL");
-  // Its dielectric albedo table as a GLSL constant array (tens of thousands of integers indexed at
-  // run time) takes Mesa minutes to compile: the table needs a texture or buffer first.
-  if (p.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING)
-    bad("\"model\": \"energy_conserving\" has no GLSL back end yet (the CPU evaluator has it); "
-        "use \"weidlich_wilkie\" for GLSL");
 }
 
 std::string header(std::span<const Program> programs, const Module& module, const Options& o) {
@@ -385,13 +384,19 @@ std::string header(std::span<const Program> programs, const Module& module, cons
         << "//   the texels decoded as lamina decodes them (a GL's own sRGB decoding of SRGB8_ALPHA8 is not\n"
         << "//   exact enough to match the CPU); lamina filters and wraps itself.\n";
   }
+  for (const TableBinding& t : module.tables)
+    s << "//\n// uniform highp usampler2D " << t.name << ": " << t.contents << ".\n"
+      << "//   Bind an " << t.format << " texture of " << t.width << " x " << t.height
+      << " texels, the side file's \"tables\" entry, row 0 first;\n//   lamina reads it with texelFetch.\n";
   return s.str();
 }
 
 // The dielectric albedo table (nodes/kernels/energy.glsl) for the combinations of distribution and
-// Fresnel term the boundaries of energy-conserving materials use, with the integers C++ compiles
-// in, and where each starts (-1 for the others; the Weidlich-Wilkie composition never reads it).
-std::string albedo_tables(std::span<const Program> programs) {
+// Fresnel term that the boundaries of energy-conserving materials use, as a texture of the integers
+// C++ compiles in, and the kernels' reader of it. Without such a boundary the reader returns 0 and
+// every combination is absent (the Weidlich-Wilkie composition never reads it), and the module
+// declares no texture. Returns the GLSL; adds the texture to `module`.
+std::string albedo_table(std::span<const Program> programs, Module& module) {
   std::vector<bool> used(size_t(kernels::LAMINA_ALBEDO_COMBOS), false);
   for (const Program& p : programs)
     for (const StackEntry& e : p.stack) {
@@ -399,26 +404,37 @@ std::string albedo_tables(std::span<const Program> programs) {
       const kernels::LaminaEntry k = kernel_entry(e, true);
       if (k.kind == kernels::LAMINA_LAYER) used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
     }
-  std::ostringstream offsets, values;
-  int length = 0;
+  TableBinding table;
+  table.name = "lamina_dielectric_albedo_table";
+  table.format = "R16UI";
+  table.width = kernels::LAMINA_ALBEDO_TABLE_WIDTH;
+  std::ostringstream rows;
   for (int c = 0; c < kernels::LAMINA_ALBEDO_COMBOS; ++c) {
-    offsets << (c ? ", " : "") << (used[size_t(c)] ? length : -1);
+    rows << (c ? ", " : "") << (used[size_t(c)] ? table.height : -1);
     if (!used[size_t(c)]) continue;
-    const int* table = kernels::LAMINA_DIELECTRIC_ALBEDO + kernels::LAMINA_DIELECTRIC_ALBEDO_OFFSET[c];
-    for (int i = 0; i < kernels::LAMINA_ALBEDO_COMBO_SIZE; ++i) {
-      values << (length ? "," : "") << ((length % 24 == 0) ? "\n  " : (length ? " " : "")) << table[i];
-      ++length;
-    }
-  }
-  if (length == 0) {  // no boundary: a one-entry table the lookups never reach
-    values << "\n  0";
-    length = 1;
+    const int first = kernels::LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[c] * kernels::LAMINA_ALBEDO_TABLE_WIDTH;
+    for (int i = 0; i < kernels::LAMINA_ALBEDO_COMBO_SIZE; ++i)
+      table.texels.push_back(uint16_t(kernels::LAMINA_DIELECTRIC_ALBEDO[first + i]));
+    table.height += kernels::LAMINA_ALBEDO_ETAS;
   }
   std::ostringstream s;
-  s << "// The energy a rough dielectric boundary reflects, round(65535 E) (nodes/kernels/energy.glsl).\n";
-  s << "const int LAMINA_DIELECTRIC_ALBEDO_OFFSET[" << kernels::LAMINA_ALBEDO_COMBOS << "] = int["
-    << kernels::LAMINA_ALBEDO_COMBOS << "](" << offsets.str() << ");\n";
-  s << "const int LAMINA_DIELECTRIC_ALBEDO[" << length << "] = int[" << length << "](" << values.str() << ");\n\n";
+  s << "// The energy a rough dielectric boundary reflects, round(65535 E) (nodes/kernels/energy.glsl): the first\n"
+       "// row of each combination of distribution and Fresnel term in the table, -1 if absent.\n";
+  s << "const int LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[" << kernels::LAMINA_ALBEDO_COMBOS << "] = int["
+    << kernels::LAMINA_ALBEDO_COMBOS << "](" << rows.str() << ");\n";
+  if (table.height == 0) {
+    s << "float lamina_albedo_texel(int x, int y) {\n  return 0.0f;\n}\n\n";
+    return s.str();
+  }
+  table.contents = "round(65535 E), the energy a rough dielectric boundary reflects, for " +
+                   std::to_string(table.height / kernels::LAMINA_ALBEDO_ETAS) +
+                   " combinations of distribution and Fresnel term (nodes/kernels/energy.glsl)";
+  s << "// The table: an R16UI texture of " << table.width << " x " << table.height
+    << " texels, bound by the host (the side file's \"tables\").\n";
+  s << "uniform highp usampler2D " << table.name << ";\n";
+  s << "float lamina_albedo_texel(int x, int y) {\n  return float(texelFetch(" << table.name
+    << ", ivec2(x, y), 0).r);\n}\n\n";
+  module.tables.push_back(std::move(table));
   return s.str();
 }
 
@@ -444,18 +460,19 @@ Module generate(std::span<const Program> programs, const Options& options) {
   }
   std::ostringstream s;
   s << version_line(options.target) << "\n";
-  s << header(programs, module, options) << "\n";
-  if (options.target == Target::Es300)
-    s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n";
-  // The arrays of the kernels' composition hold the largest material's stack.
-  s << "#define LAMINA_STACK " << stack_length << "\n\n";
   std::string code;  // everything after the kernels: what decides which kernels are needed
   for (const auto& [name, text] : module_code) code += text;
   for (const std::string& body : bodies) code += body;
   if (options.sphere_shader) code += sphere_shader(module.materials.front().prefix);
   const std::string kernels = needed_kernels(kernel_sources(), code);
-  if (kernels.find("LAMINA_DIELECTRIC_ALBEDO") != std::string::npos) s << albedo_tables(programs);
-  s << kernels << code;
+  std::string table;
+  if (kernels.find("lamina_albedo_texel") != std::string::npos) table = albedo_table(programs, module);
+  s << header(programs, module, options) << "\n";
+  if (options.target == Target::Es300)
+    s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp usampler2D;\n";
+  // The arrays of the kernels' composition hold the largest material's stack.
+  s << "#define LAMINA_STACK " << stack_length << "\n\n";
+  s << table << kernels << code;
   module.source = s.str();
   return module;
 }

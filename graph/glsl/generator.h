@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -66,16 +67,28 @@ struct MaterialInterface {
   std::vector<SamplerBinding> samplers;
 };
 
+// A table the module's kernels read: the dielectric albedo of nodes/kernels/energy.glsl, which the
+// energy-conserving model needs. The host binds it to `uniform highp usampler2D <name>` as an
+// R16UI 2D texture of these texels, row 0 first, so that texelFetch returns them unchanged.
+struct TableBinding {
+  std::string name;    // "lamina_dielectric_albedo_table"
+  std::string format;  // "R16UI"
+  int width = 0, height = 0;
+  std::vector<uint16_t> texels;  // width * height, row 0 first
+  std::string contents;          // what the texels are, for the side file and the header
+};
+
 struct Module {
   std::string source;
   std::vector<MaterialInterface> materials;
+  std::vector<TableBinding> tables;  // shared by the module's materials
 };
 
 // Throws std::invalid_argument for an empty list or a Program that is not valid.
 Module generate(std::span<const Program> programs, const Options& options);
 
 // The uniform side file: materials, their block names, sizes, members (name, type, offset,
-// value, node, parameter) and samplers, as JSON text.
+// value, node, parameter) and samplers, and the module's tables with their texels, as JSON text.
 std::string interface_json(const Module& module, const Options& options);
 
 // The std140 bytes of a material's block holding the file's values.

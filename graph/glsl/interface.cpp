@@ -51,7 +51,38 @@ std::string interface_json(const Module& module, const Options& options) {
     materials.push_back(entry);
   }
   root["materials"] = materials;
-  return root.dump(2) + "\n";
+  // A table's texels, one line per row of the texture: a placeholder here, replaced below (nlohmann
+  // would give every number a line of its own).
+  nlohmann::ordered_json tables = nlohmann::ordered_json::array();
+  for (size_t t = 0; t < module.tables.size(); ++t) {
+    const TableBinding& b = module.tables[t];
+    tables.push_back({{"name", b.name},
+                      {"type", "usampler2D"},
+                      {"format", b.format},
+                      {"width", b.width},
+                      {"height", b.height},
+                      {"contents", b.contents},
+                      {"texels", "@texels " + std::to_string(t)}});
+  }
+  root["tables"] = tables;
+  std::string text = root.dump(2) + "\n";
+  for (size_t t = 0; t < module.tables.size(); ++t) {
+    const TableBinding& b = module.tables[t];
+    const std::string placeholder = "\"@texels " + std::to_string(t) + "\"";
+    const size_t at = text.rfind(placeholder);  // the tables come last: a material name cannot match
+    const size_t line = text.rfind('\n', at) + 1;
+    const std::string indent(text.find_first_not_of(' ', line) - line + 2, ' ');
+    std::string rows = "[";
+    for (int y = 0; y < b.height; ++y) {
+      rows += "\n" + indent;
+      for (int x = 0; x < b.width; ++x)
+        rows += std::to_string(b.texels[size_t(y) * size_t(b.width) + size_t(x)]) + (x + 1 < b.width ? "," : "");
+      rows += y + 1 < b.height ? "," : "";
+    }
+    rows += "\n" + indent.substr(2) + "]";
+    text.replace(at, placeholder.size(), rows);
+  }
+  return text;
 }
 
 std::vector<std::byte> pack_uniforms(const MaterialInterface& material) {

@@ -13,6 +13,9 @@ const int LAMINA_ALBEDO_SLOPES = 13;
 const int LAMINA_ALBEDO_COSINES = 25;
 const int LAMINA_ALBEDO_COMBO_SIZE = LAMINA_ALBEDO_ETAS * LAMINA_ALBEDO_SLOPES * LAMINA_ALBEDO_COSINES;
 const int LAMINA_ALBEDO_COMBOS = 6;  // distributions (beckmann, blinn, ggx) x Fresnel (exact, approximations)
+// The table is stored as an image, one row per (combination, eta) and LAMINA_ALBEDO_SLOPES runs of
+// LAMINA_ALBEDO_COSINES texels across (the GLSL back end binds it as an R16UI texture).
+const int LAMINA_ALBEDO_TABLE_WIDTH = LAMINA_ALBEDO_SLOPES * LAMINA_ALBEDO_COSINES;
 
 // A table's combination: the distribution's code, times 2, plus 1 for the Schlick and Lazanyi
 // terms, which are the same polynomial for a dielectric (lamina_fresnel_dielectric).

@@ -49,9 +49,12 @@ inline constexpr int LAMINA_DIELECTRIC_ALBEDO[] = {
 };
 static_assert(sizeof(LAMINA_DIELECTRIC_ALBEDO) / sizeof(int) == size_t(LAMINA_ALBEDO_COMBOS) * LAMINA_ALBEDO_COMBO_SIZE,
               "nodes/kernels/dielectric_albedo.inc does not match the grid of albedo_grid.glsl");
-inline constexpr int LAMINA_DIELECTRIC_ALBEDO_OFFSET[LAMINA_ALBEDO_COMBOS] = {
-    0 * LAMINA_ALBEDO_COMBO_SIZE, 1 * LAMINA_ALBEDO_COMBO_SIZE, 2 * LAMINA_ALBEDO_COMBO_SIZE,
-    3 * LAMINA_ALBEDO_COMBO_SIZE, 4 * LAMINA_ALBEDO_COMBO_SIZE, 5 * LAMINA_ALBEDO_COMBO_SIZE};
+inline constexpr int LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[LAMINA_ALBEDO_COMBOS] = {
+    0 * LAMINA_ALBEDO_ETAS, 1 * LAMINA_ALBEDO_ETAS, 2 * LAMINA_ALBEDO_ETAS,
+    3 * LAMINA_ALBEDO_ETAS, 4 * LAMINA_ALBEDO_ETAS, 5 * LAMINA_ALBEDO_ETAS};
+inline float lamina_albedo_texel(int x, int y) {
+  return float(LAMINA_DIELECTRIC_ALBEDO[y * LAMINA_ALBEDO_TABLE_WIDTH + x]);
+}
 
 // clang-format off
 #include "nodes/kernels/energy.glsl"

@@ -234,9 +234,10 @@ bool check_pass(const Pass& pass, std::string* error) {
       *error = which + " has size " + std::to_string(t.width) + " x " + std::to_string(t.height);
       return false;
     }
-    if (t.texels.size() != size_t(t.width) * size_t(t.height)) {
-      *error = which + " has " + std::to_string(t.texels.size()) + " texels for " + std::to_string(t.width) + " x " +
-               std::to_string(t.height);
+    const size_t count = t.integers.empty() ? t.texels.size() : t.integers.size();
+    if (count != size_t(t.width) * size_t(t.height) || (!t.integers.empty() && !t.texels.empty())) {
+      *error = which + " has " + std::to_string(t.texels.size()) + " RGBA and " + std::to_string(t.integers.size()) +
+               " integer texels for " + std::to_string(t.width) + " x " + std::to_string(t.height);
       return false;
     }
   }
@@ -270,11 +271,12 @@ bool bind_inputs(const Pass& pass, PassObjects& objects, std::string* error) {
     glGetActiveUniformsiv(program, 1, &u, GL_UNIFORM_BLOCK_INDEX, &block);
     if (block >= 0) continue;  // a block member: set through the block's buffer
     const bool is_texture =
-        type == GL_SAMPLER_2D && size == 1 &&
-        std::any_of(pass.textures.begin(), pass.textures.end(), [&](const Texture& t) { return t.name == name; });
+        size == 1 && std::any_of(pass.textures.begin(), pass.textures.end(), [&](const Texture& t) {
+          return t.name == name && type == (t.integers.empty() ? GL_SAMPLER_2D : GL_UNSIGNED_INT_SAMPLER_2D);
+        });
     if (!is_texture) {
       *error = "uniform \"" + name + "\" of the fragment shader is not set by the pass (a pass sets sampler2D " +
-               "textures by name and one uniform block)";
+               "and usampler2D textures by name and one uniform block)";
       return false;
     }
   }
@@ -291,8 +293,15 @@ bool bind_inputs(const Pass& pass, PassObjects& objects, std::string* error) {
     objects.inputs.push_back(texture);
     glActiveTexture(GLenum(GL_TEXTURE0 + i));
     glBindTexture(GL_TEXTURE_2D, texture);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, t.width, t.height);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, t.texels.data());
+    if (t.integers.empty()) {
+      glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, t.width, t.height);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, t.texels.data());
+    } else {
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 2);  // rows of 16-bit texels, packed
+      glTexStorage2D(GL_TEXTURE_2D, 1, GL_R16UI, t.width, t.height);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, t.width, t.height, GL_RED_INTEGER, GL_UNSIGNED_SHORT, t.integers.data());
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,11 +28,13 @@ enum class Api {
   Es,       // an OpenGL ES 3.x context: runs "#version 300 es"
 };
 
-// An RGBA32F 2D texture bound to `uniform sampler2D <name>;`, GL_NEAREST, GL_CLAMP_TO_EDGE.
+// A 2D texture, GL_NEAREST, GL_CLAMP_TO_EDGE: RGBA32F bound to `uniform sampler2D <name>;`, or,
+// when `integers` holds the texels, R16UI bound to `uniform usampler2D <name>;`.
 struct Texture {
   std::string name;
   int width = 0, height = 0;
-  std::vector<glm::vec4> texels;  // width * height, row 0 first
+  std::vector<glm::vec4> texels;   // width * height, row 0 first
+  std::vector<uint16_t> integers;  // or these
 };
 
 struct Pass {

@@ -64,7 +64,7 @@ std::string first_mismatch(const std::vector<vec4>& actual, const std::vector<ve
 
 // Per-pixel values spanning tiny, huge and negative magnitudes, distinct for every pixel.
 Texture pattern(const std::string& name, int width, int height) {
-  Texture t{name, width, height, {}};
+  Texture t{name, width, height, {}, {}};
   for (int i = 0; i < width * height; ++i)
     t.texels.push_back(vec4(-0.375f * float(i), 1e-20f * float(i + 1), 3e30f * float(1 + i % 7), -2.5e-3f * float(i)));
   return t;
@@ -104,6 +104,34 @@ TEST_CASE("the GL runner reads back exactly the unclamped floats a shader writes
   }
 }
 
+TEST_CASE("the GL runner binds 16-bit integer textures to usampler2D and texelFetch returns every integer unchanged") {
+  Runners runners;
+  const int width = 13, height = 3;  // odd: rows of 16-bit texels are not 4-byte aligned
+  Texture codes{"codes", width, height, {}, {}};
+  for (int i = 0; i < width * height; ++i) codes.integers.push_back(uint16_t(i == 0 ? 65535 : (i * 2749) % 65536));
+  for (const Target& target : kTargets) {
+    INFO(std::string(target.header));
+    Pass pass;
+    pass.fragment_source = std::string(target.header) +
+                           "uniform highp usampler2D codes;\n"
+                           "layout(location = 0) out vec4 result;\n"
+                           "void main() {\n"
+                           "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+                           "  result = vec4(float(texelFetch(codes, p, 0).r), 0.0, 0.0, 1.0);\n"
+                           "}\n";
+    pass.width = width;
+    pass.height = height;
+    pass.textures = {codes};
+    std::vector<vec4> expected;
+    for (uint16_t c : codes.integers) expected.push_back(vec4(float(c), 0.0f, 0.0f, 1.0f));
+    std::vector<std::vector<vec4>> out;
+    std::string error;
+    REQUIRE_MESSAGE(runners.get(target.api).run(pass, &out, &error), error);
+    const std::string mismatch = first_mismatch(out[0], expected, width);
+    CHECK_MESSAGE(mismatch.empty(), mismatch);
+  }
+}
+
 TEST_CASE("the GL runner reads several outputs back each on its own, and binds textures of any size by name") {
   Runners runners;
   const int width = 7, height = 3;
@@ -123,7 +151,7 @@ TEST_CASE("the GL runner reads several outputs back each on its own, and binds t
     pass.width = width;
     pass.height = height;
     pass.outputs = 2;
-    Texture small{"small", 3, 2, {}};
+    Texture small{"small", 3, 2, {}, {}};
     for (int i = 0; i < 6; ++i) small.texels.push_back(vec4(float(i), 10.0f * float(i), 0.5f, -7.0f));
     pass.textures = {small, pattern("big", width, height)};  // not in declaration order
 
@@ -221,7 +249,7 @@ TEST_CASE("the GL runner refuses by name inputs the shader does not declare and 
   CHECK_FALSE(runner.run(pass, &out, &error));  // lamina_in would silently read unit 0
   CHECK_MESSAGE(error.find("\"lamina_in\"") != std::string::npos, error);
 
-  pass.textures = {{"lamina_in", 1, 1, {vec4(1.0f)}}, {"lamina_ni", 1, 1, {vec4(2.0f)}}};
+  pass.textures = {{"lamina_in", 1, 1, {vec4(1.0f)}, {}}, {"lamina_ni", 1, 1, {vec4(2.0f)}, {}}};
   CHECK_FALSE(runner.run(pass, &out, &error));  // a misspelt name
   CHECK_MESSAGE(error.find("\"lamina_ni\" is not a uniform") != std::string::npos, error);
 

@@ -270,8 +270,8 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
   pass.width = width;
   pass.height = height;
   pass.outputs = 3;
-  gltest::Texture twi{"lamina_q_wi", width, height, {}}, two{"lamina_q_wo", width, height, {}},
-      tu{"lamina_q_u", width, height, {}};
+  gltest::Texture twi{"lamina_q_wi", width, height, {}, {}}, two{"lamina_q_wo", width, height, {}, {}},
+      tu{"lamina_q_u", width, height, {}, {}};
   for (size_t i = 0; i < size_t(width * height); ++i) {
     const Query& q = queries[std::min(i, queries.size() - 1)];
     twi.texels.push_back(vec4(q.wi, q.u_layer));
@@ -279,7 +279,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
     tu.texels.push_back(vec4(q.uv, q.u));
   }
   pass.textures = {twi, two, tu};
-  test::bind_material(pass, program, mi, run.uniforms);
+  test::bind_material(pass, program, module, mi, run.uniforms);
   std::vector<std::vector<vec4>> out;
   std::string error;
   if (!runner.run(pass, &out, &error)) {
@@ -484,7 +484,7 @@ int main(int argc, char** argv) {
   }
   if (random_count > 0) {
     const std::string name = "random stacks (seed " + std::to_string(random_seed) + ")";
-    const std::string text = test::RandomStacks(random_seed, false).file(random_count);
+    const std::string text = test::RandomStacks(random_seed).file(random_count);
     CheckedFile checked = check_text(text, name);
     for (const Diagnostic& d : checked.diagnostics.errors()) std::printf("generator bug: %s\n", format(d).c_str());
     if (checked.ok()) {

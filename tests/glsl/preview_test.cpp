@@ -81,7 +81,7 @@ std::vector<vec3> gpu_preview(const Program& program, const Case& c) {
                                            "const vec2 lamina_viewport = vec2(" + std::to_string(kSize) + ".0f);");
   pass.width = kSize;
   pass.height = kSize;
-  test::bind_material(pass, program, mi, c.uniforms);
+  test::bind_material(pass, program, module, mi, c.uniforms);
   std::vector<std::vector<vec4>> out;
   std::string error;
   bool ran = runner(c.target == glsl::Target::Es300 ? gltest::Api::Es : gltest::Api::Desktop).run(pass, &out, &error);

@@ -5,10 +5,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "graph/cpu_test_support.h"
+#include "graph/glsl/glsl_text.h"
+#include "nodes/kernels/kernels.h"
 #include "test_support.h"
 
 using namespace lamina;
@@ -56,16 +60,49 @@ TEST_CASE("a smooth clear coat over a Lambert base reflects what the closed form
   }
 }
 
-TEST_CASE(
-    "lamina glsl refuses an energy-conserving material with exit 2, its file and the reason, and writes nothing") {
+TEST_CASE("lamina glsl writes an energy-conserving material's table into the side file the host binds it from") {
+  test::TempDir dir;
+  // A smooth GGX boundary with the exact Fresnel term: one combination of the table.
+  std::ofstream(dir.path() / "coat.json")
+      << glsl::replace_all(coat_over_lambert(1.5, 0.8, "energy_conserving"), R"("roughness_deg": 0.0)",
+                           R"("roughness_deg": 0.0, "distribution": "ggx", "fresnel": "exact")");
+  test::RunResult r = test::run_cli("glsl coat.json -o coat.glsl", dir.path());
+  REQUIRE(r.exit_code == 0);
+  CHECK(test::listing(dir.path()) == std::vector<std::string>{"coat.glsl", "coat.json", "coat.uniforms.json"});
+  std::ifstream side(dir.path() / "coat.uniforms.json");
+  const nlohmann::json json = nlohmann::json::parse(side);
+  REQUIRE(json["tables"].size() == 1);
+  const nlohmann::json& table = json["tables"][0];
+  CHECK(table["format"] == "R16UI");
+  const int width = table["width"], height = table["height"];
+  REQUIRE(table["texels"].size() == size_t(width) * size_t(height));
+  // The integers C++ reads for that combination.
+  namespace k = lamina::kernels;
+  CHECK(height == k::LAMINA_ALBEDO_ETAS);
+  const int combo = k::lamina_albedo_combo(2, 0);
+  for (int y = 0; y < height; y += 5)
+    for (int x = 0; x < width; x += 7)
+      CHECK(table["texels"][size_t(y * width + x)] ==
+            int(k::lamina_albedo_texel(x, k::LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[combo] + y)));
+  std::ifstream module(dir.path() / "coat.glsl");
+  const std::string text((std::istreambuf_iterator<char>(module)), std::istreambuf_iterator<char>());
+  CHECK(text.find("uniform highp usampler2D " + table["name"].get<std::string>() + ";") != std::string::npos);
+}
+
+TEST_CASE("lamina glsl -o - refuses an energy-conserving material without --interface, and writes nothing") {
   test::TempDir dir;
   std::ofstream(dir.path() / "coat.json") << coat_over_lambert(1.5, 0.8, "energy_conserving");
-  test::RunResult r = test::run_cli("glsl coat.json -o coat.glsl", dir.path());
+  test::RunResult r = test::run_cli("glsl coat.json -o -", dir.path());
   CHECK(r.exit_code == 2);
+  CHECK(r.out.empty());
   CHECK(r.err.find("coat.json") != std::string::npos);
-  CHECK(r.err.find("energy_conserving") != std::string::npos);
+  CHECK(r.err.find("--interface") != std::string::npos);
   CHECK(test::listing(dir.path()) == std::vector<std::string>{"coat.json"});
-  // The same stack under the default model compiles.
-  std::ofstream(dir.path() / "coat.json") << coat_over_lambert(1.5, 0.8, "weidlich_wilkie");
-  CHECK(test::run_cli("glsl coat.json -o coat.glsl", dir.path()).exit_code == 0);
+  CHECK(test::run_cli("glsl coat.json -o - --interface coat.side.json", dir.path()).exit_code == 0);
+  CHECK(test::listing(dir.path()) == std::vector<std::string>{"coat.json", "coat.side.json"});
+  // The same stack under the Weidlich-Wilkie model reads no table and needs no side file.
+  std::ofstream(dir.path() / "ww.json") << coat_over_lambert(1.5, 0.8, "weidlich_wilkie");
+  test::RunResult ww = test::run_cli("glsl ww.json -o -", dir.path());
+  CHECK(ww.exit_code == 0);
+  CHECK(ww.out.find("usampler2D") == std::string::npos);
 }

@@ -141,12 +141,13 @@ for target in 330 450 es300; do
     # The one macro the back end defines: the length of the stack's arrays (common.glsl defines
     # the others).
     echo "#define LAMINA_STACK 4"
-    # and the dielectric albedo table (energy.glsl), here every combination of it.
-    numbers=$(grep -v '^//' "$kernels/dielectric_albedo.inc" | tr -d ' \n')
-    count=$(($(tr -cd ',' <<<"$numbers" | wc -c) + 1))
-    size=$((count / 6))
-    echo "const int LAMINA_DIELECTRIC_ALBEDO_OFFSET[6] = int[6](0, $size, $((2 * size)), $((3 * size)), $((4 * size)), $((5 * size)));"
-    echo "const int LAMINA_DIELECTRIC_ALBEDO[$count] = int[$count]($numbers);"
+    # and the dielectric albedo table's reader (energy.glsl): a texture of every combination.
+    echo "uniform highp usampler2D lamina_dielectric_albedo_table;"
+    etas=$(sed -n 's/^const int LAMINA_ALBEDO_ETAS = \([0-9]*\);.*/\1/p' "$kernels/albedo_grid.glsl")
+    echo "const int LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[6] = int[6](0, $etas, $((2 * etas)), $((3 * etas)), $((4 * etas)), $((5 * etas)));"
+    echo "float lamina_albedo_texel(int x, int y) {"
+    echo "  return float(texelFetch(lamina_dielectric_albedo_table, ivec2(x, y), 0).r);"
+    echo "}"
     # The files in the order kernels.h includes them, the one list of kernel files.
     for f in $(sed -n 's|^#include "nodes/kernels/\(.*\.glsl\)"$|\1|p' "$kernels/kernels.h"); do
       cat "$kernels/$f"
