@@ -38,21 +38,29 @@ LAMINA_FN float refraction_jacobian(float cos_above, float cos_below, float eta)
   return cos_above / max(eta * eta * cos_below, LAMINA_MIN_DENOM);
 }
 
-// Bouguer-Lambert-Beer attenuation per channel along one refracted direction of cosine cos_w
-// through a layer (Weidlich and Wilkie course, eq. 3.2): exp(-sigma d / cos_w). 0 if the cosine is
-// <= 0. A negative optical depth (sigma d < 0) is treated as 0, never as gain. A layer without
-// thickness (a clear medium) gives exactly the 1 the exponential would, without computing it.
+// Bouguer-Lambert-Beer attenuation per channel over a path of `length` layer thicknesses
+// (Weidlich and Wilkie course, eq. 3.2): exp(-sigma d length). A negative optical depth (sigma d < 0)
+// is treated as 0, never as gain. A layer without thickness (a clear medium) gives exactly the 1 the
+// exponential would, without computing it.
+LAMINA_FN vec3 lamina_beer_lambert(vec3 sigma, float thickness, float length) {
+  if (thickness == 0.0f) return vec3(1.0f);
+  return exp(-max(sigma * (thickness * length), vec3(0.0f)));
+}
+
+// The attenuation along one refracted direction of cosine cos_w: a path of 1 / cos_w; 0 if the
+// cosine is <= 0.
 LAMINA_FN vec3 one_way_absorption(vec3 sigma, float thickness, float cos_w) {
   if (cos_w <= 0.0f) return vec3(0.0f);
-  if (thickness == 0.0f) return vec3(1.0f);
-  return exp(-max(sigma * (thickness / max(cos_w, LAMINA_MIN_DENOM)), vec3(0.0f)));
+  return lamina_beer_lambert(sigma, thickness, 1.0f / max(cos_w, LAMINA_MIN_DENOM));
 }
 
 // The same along the refracted path down and back up (Weidlich and Wilkie course, eqs. 3.2, 3.4
 // and 3.5; Elek 2010, eq. 3): a = exp(-sigma d (1/cos_l + 1/cos_v)), cos_l and cos_v of the
-// refracted directions, as the product of the two one-way factors.
+// refracted directions, in one exponential (the product of the two one-way factors, to rounding).
 LAMINA_FN vec3 absorption(vec3 sigma, float thickness, float cos_l, float cos_v) {
-  return one_way_absorption(sigma, thickness, cos_l) * one_way_absorption(sigma, thickness, cos_v);
+  if (cos_l <= 0.0f || cos_v <= 0.0f) return vec3(0.0f);
+  return lamina_beer_lambert(sigma, thickness,
+                             1.0f / max(cos_l, LAMINA_MIN_DENOM) + 1.0f / max(cos_v, LAMINA_MIN_DENOM));
 }
 
 // Elek 2010, eq. 4 (Weidlich and Wilkie course, eq. 3.3): t = (1 - G) + T G per channel, where T
