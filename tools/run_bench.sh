@@ -25,6 +25,14 @@ for (const [label, prefix] of rows) {
     console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ns vs ${base.toFixed(1)} ns per evaluation, ${(1e3 / t).toFixed(2)} M/s on one core)`);
   }
 }
+console.log("The energy-conserving model, ratio to the same material under the Weidlich-Wilkie model and to a single lobe (same run):");
+for (const [label, prefix] of rows) {
+  const base = ns[prefix + "single_lobe"];
+  for (const name of ["car_paint_2_layers", "house_paint_3_layers"]) {
+    const t = ns[prefix + name + "_conserving"], faithful = ns[prefix + name];
+    console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / faithful).toFixed(2)}x, ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ns vs ${faithful.toFixed(1)} ns and ${base.toFixed(1)} ns per evaluation)`);
+  }
+}
 const gpu = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
 const ms = {};
 for (const b of gpu.benchmarks) ms[b.name.split("/")[1]] = b.real_time;

@@ -2,7 +2,10 @@
 // Run: bash tools/run_bench.sh (prints the ratios), or build/release/tests/bench/lamina_bench.
 #include <benchmark/benchmark.h>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
@@ -21,9 +24,13 @@ lamina::cpu::Evaluator evaluator_from_text(const char* text) {
   return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], "bench.json"));
 }
 
-lamina::cpu::Evaluator evaluator_from_example(const char* name) {
+// An example's first material under `model` ("weidlich_wilkie", "energy_conserving").
+lamina::cpu::Evaluator evaluator_from_example(const char* name, const char* model = "weidlich_wilkie") {
   std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name + ".json";
-  auto checked = lamina::check_file(file);
+  std::ifstream in(file);
+  nlohmann::json document = nlohmann::json::parse(in);
+  document["materials"][0]["model"] = model;
+  auto checked = lamina::check_text(document.dump(), file);
   return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], file));
 }
 
@@ -107,6 +114,15 @@ const lamina::cpu::Evaluator& house_paint() {
   static const auto e = evaluator_from_example("house_paint");
   return e;
 }
+// The same two under the energy-conserving model.
+const lamina::cpu::Evaluator& car_paint_conserving() {
+  static const auto e = evaluator_from_example("car_paint", "energy_conserving");
+  return e;
+}
+const lamina::cpu::Evaluator& house_paint_conserving() {
+  static const auto e = evaluator_from_example("house_paint", "energy_conserving");
+  return e;
+}
 
 void BM_eval_single_lobe(benchmark::State& s) { eval_scalar(s, single()); }
 void BM_eval_car_paint_2_layers(benchmark::State& s) { eval_scalar(s, car_paint()); }
@@ -120,6 +136,19 @@ void BM_eval_pdf_batch_house_paint_3_layers(benchmark::State& s) { eval_pdf_batc
 void BM_sample_single_lobe(benchmark::State& s) { sample_scalar(s, single()); }
 void BM_sample_car_paint_2_layers(benchmark::State& s) { sample_scalar(s, car_paint()); }
 void BM_sample_house_paint_3_layers(benchmark::State& s) { sample_scalar(s, house_paint()); }
+
+void BM_eval_car_paint_2_layers_conserving(benchmark::State& s) { eval_scalar(s, car_paint_conserving()); }
+void BM_eval_house_paint_3_layers_conserving(benchmark::State& s) { eval_scalar(s, house_paint_conserving()); }
+void BM_eval_batch_car_paint_2_layers_conserving(benchmark::State& s) { eval_batched(s, car_paint_conserving()); }
+void BM_eval_batch_house_paint_3_layers_conserving(benchmark::State& s) { eval_batched(s, house_paint_conserving()); }
+void BM_eval_pdf_batch_car_paint_2_layers_conserving(benchmark::State& s) {
+  eval_pdf_batched(s, car_paint_conserving());
+}
+void BM_eval_pdf_batch_house_paint_3_layers_conserving(benchmark::State& s) {
+  eval_pdf_batched(s, house_paint_conserving());
+}
+void BM_sample_car_paint_2_layers_conserving(benchmark::State& s) { sample_scalar(s, car_paint_conserving()); }
+void BM_sample_house_paint_3_layers_conserving(benchmark::State& s) { sample_scalar(s, house_paint_conserving()); }
 
 }  // namespace
 
@@ -135,5 +164,14 @@ BENCHMARK(BM_eval_pdf_batch_house_paint_3_layers);
 BENCHMARK(BM_sample_single_lobe);
 BENCHMARK(BM_sample_car_paint_2_layers);
 BENCHMARK(BM_sample_house_paint_3_layers);
+
+BENCHMARK(BM_eval_car_paint_2_layers_conserving);
+BENCHMARK(BM_eval_house_paint_3_layers_conserving);
+BENCHMARK(BM_eval_batch_car_paint_2_layers_conserving);
+BENCHMARK(BM_eval_batch_house_paint_3_layers_conserving);
+BENCHMARK(BM_eval_pdf_batch_car_paint_2_layers_conserving);
+BENCHMARK(BM_eval_pdf_batch_house_paint_3_layers_conserving);
+BENCHMARK(BM_sample_car_paint_2_layers_conserving);
+BENCHMARK(BM_sample_house_paint_3_layers_conserving);
 
 BENCHMARK_MAIN();
