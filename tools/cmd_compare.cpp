@@ -6,7 +6,9 @@
 
 #include "graph/cpu/compare.h"
 #include "tools/commands.h"
+#include "tools/figure_file.h"
 #include "tools/material_arg.h"
+#include "tools/plot_compare.h"
 
 namespace lamina::cli {
 
@@ -21,6 +23,8 @@ struct CompareCliOptions {
   uint64_t seed = 0;
   std::string uv = "0,0";
   bool json = false;
+  std::string plot;  // the figure's file, if any
+  int size = kFigureDefaultSize;
 };
 
 nlohmann::json triple(glm::dvec3 v) { return {v.r, v.g, v.b}; }
@@ -88,10 +92,23 @@ int run_compare(const CompareCliOptions& o) {
     }
   const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
   if (!ctx) return kExitInvalid;
+  FigureFile figure;
+  if (!o.plot.empty())
+    if (int code = prepare_figure("--plot", o.plot, o.size, figure); code != kExitOk) return code;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
   const cpu::ShadingPoint point = evaluator->bind(*ctx);
   const cpu::Comparison c = cpu::compare_to_reference(point, {o.albedo_walks, o.slice_walks, o.seed});
+  if (!o.plot.empty()) {
+    OIIO::ImageBuf image = figure_image(figure);
+    const plot::ComparisonSource source{o.material.file, ctx->uv, o.albedo_walks, o.slice_walks};
+    if (!plot::draw_comparison(image, *evaluator, c, source, figure.fonts)) {
+      print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + image.geterror());
+      return kExitIo;
+    }
+    if (int code = write_figure(image, figure, "lamina compare of " + evaluator->program().name); code != kExitOk)
+      return code;
+  }
   if (o.json)
     print_json(c, o);
   else
@@ -110,6 +127,10 @@ void add_compare(CLI::App& app, Runner& runner) {
   cmd->add_option("--seed", o->seed, "mixed into the reference's seeds")->capture_default_str();
   cmd->add_option("--uv", o->uv, "texture coordinates U,V of the shading point")->capture_default_str();
   cmd->add_flag("--json", o->json, "print every value, its reference and the errors as JSON");
+  cmd->add_option("--plot", o->plot,
+                  "also draw the comparison into this image (e.g. compare.png): the slices of lamina plot with the "
+                  "reference's points, beside the directional albedo");
+  cmd->add_option("--size", o->size, "the figure's width in pixels; the height is half of it")->capture_default_str();
   cmd->footer(
       "Albedo at 0 to 89 degrees, and f in the plane of incidence for views at 0, 30, 60 and 80 degrees with the "
       "light every 5 degrees (positive angles on the mirror side). A channel's relative error is "

@@ -2,28 +2,17 @@
 // BRDF slices (log10 f per channel against the light's angle, for views at 0, 30, 60 and 80
 // degrees, at one uv) beside a sphere lit by one directional light and a dim uniform sky
 // (tools/plot_figure.h). Deterministic for the same input.
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
-#include <algorithm>
-#include <filesystem>
 #include <iostream>
 
 #include "nodes/kernels/kernels.h"
 #include "tools/commands.h"
+#include "tools/figure_file.h"
 #include "tools/material_arg.h"
-#include "tools/plot_canvas.h"
 #include "tools/plot_figure.h"
-#include "tools/plot_text.h"
 
 namespace lamina::cli {
 
 namespace {
-
-namespace fs = std::filesystem;
-
-constexpr int kMinSize = 800;
-constexpr int kMaxSize = 8192;
-constexpr int kDefaultSize = 1600;
 
 // The radiance of the uniform sky around the sphere: by default the preview's own, which the GLSL
 // sphere shader uses too.
@@ -33,17 +22,12 @@ constexpr float kMaxAmbient = 10.0f;
 struct PlotOptions {
   MaterialArg material;
   std::string output;
-  int size = kDefaultSize;
+  int size = kFigureDefaultSize;
   std::string uv = "0,0";
   float ambient = kDefaultAmbient;
 };
 
 int run_plot(const PlotOptions& o) {
-  if (o.size < kMinSize || o.size > kMaxSize) {
-    std::cerr << "lamina: --size: " << o.size << " is outside [" << kMinSize << ", " << kMaxSize
-              << "] (the width in pixels; the height is half of it)\n";
-    return kExitInvalid;
-  }
   if (!(o.ambient >= 0.0f && o.ambient <= kMaxAmbient)) {
     std::cerr << "lamina: --ambient: " << o.ambient << " is outside [0, " << kMaxAmbient
               << "] (the radiance of the uniform sky; 0 for the light alone)\n";
@@ -51,41 +35,18 @@ int run_plot(const PlotOptions& o) {
   }
   auto uv = parse_numbers("--uv", o.uv, 2);
   if (!uv) return kExitInvalid;
-  fs::path output(o.output);
-  std::string format = output.extension().string();
-  if (!format.empty()) format.erase(0, 1);
-  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (format.empty() || !OIIO::ImageOutput::create(format)) {
-    print_problem("-o: cannot tell an image format from '" + o.output + "' (name the file e.g. plot.png)");
-    return kExitInvalid;
-  }
-  plot::Fonts fonts = plot::find_fonts();
-  if (!plot::fonts_usable(fonts)) {
-    std::cerr << "lamina: no font for the labels: DejaVuSans.ttf was not found (on Debian: apt-get install "
-                 "fonts-dejavu-core)\n";
-    return kExitIo;
-  }
+  FigureFile figure;
+  if (int code = prepare_figure("-o", o.output, o.size, figure); code != kExitOk) return code;
 
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
 
-  OIIO::ImageSpec spec(o.size, o.size / 2, 3, OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf image(spec);
-  if (!plot::draw_figure(image, *evaluator, o.material.file, fonts, glm::vec2((*uv)[0], (*uv)[1]), o.ambient)) {
-    print_problem("cannot draw the labels with " + fonts.regular + ": " + image.geterror());
+  OIIO::ImageBuf image = figure_image(figure);
+  if (!plot::draw_figure(image, *evaluator, o.material.file, figure.fonts, glm::vec2((*uv)[0], (*uv)[1]), o.ambient)) {
+    print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + image.geterror());
     return kExitIo;
   }
-  image.specmod().attribute("oiio:ColorSpace", "sRGB");
-  image.specmod().attribute("ImageDescription", "lamina plot of " + evaluator->program().name);
-
-  // Encoded in memory, then written by the one writer: complete or absent, never over an input.
-  std::vector<unsigned char> encoded;
-  if (!plot::encode_image(image, format, encoded)) {
-    print_problem("cannot encode " + o.output + ": " + image.geterror());
-    return kExitIo;
-  }
-  if (int code = write_outputs({{output, std::string(encoded.begin(), encoded.end())}}); code != kExitOk) return code;
-  return kExitOk;
+  return write_figure(image, figure, "lamina plot of " + evaluator->program().name);
 }
 
 }  // namespace

@@ -12,6 +12,22 @@
 
 namespace lamina::cli::plot {
 
+int draw_channel_legend(OIIO::ImageBuf& image, Text& text, const Layout& l, int x, int y, int size) {
+  const char* names[] = {"red", "green", "blue"};
+  const int swatch = l.px(22), gap = l.px(6), space = l.px(14);
+  for (int c = 0; c < 3; ++c) {
+    x += space;
+    float rgb[3] = {kChannel[size_t(c)].r, kChannel[size_t(c)].g, kChannel[size_t(c)].b};
+    int thick = std::max(2, l.px(3));
+    int mid = y - size * 3 / 10;
+    OIIO::ImageBufAlgo::fill(image, rgb, OIIO::ROI(x, x + swatch, mid - thick / 2, mid - thick / 2 + thick));
+    x += swatch + gap;
+    text.draw(x, y, names[c], size, kText);
+    x += text.width(names[c], size);
+  }
+  return x;
+}
+
 bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
                  glm::vec2 uv, float ambient) {
   const int width = image.spec().width, height = image.spec().height;
@@ -22,7 +38,6 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   Decades range = value_range(slices);
   int top = l.px(92);
   int split = l.px(960);
-  int cell_w = split / 2, cell_h = (height - top) / 2;
 
   // Draw the pixels first; text goes on top through OIIO.
   Rect sphere_panel{split, top, width, height};
@@ -32,13 +47,8 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   int sx0 = (sphere.x0 + sphere.x1 - side) / 2, sy0 = (sphere.y0 + sphere.y1 - side) / 2;
   draw_sphere(canvas, evaluator, {sx0, sy0, sx0 + side, sy0 + side}, ambient);
 
-  std::vector<SliceGeometry> geometry;
-  for (size_t i = 0; i < slices.size(); ++i) {
-    int col = int(i % 2), row = int(i / 2);
-    geometry.emplace_back(l, Rect{col * cell_w, top + row * cell_h, (col + 1) * cell_w, top + (row + 1) * cell_h},
-                          range);
-    draw_slice_pixels(canvas, l, slices[i], geometry.back());
-  }
+  const std::vector<SliceGeometry> geometry = slice_grid(l, top, split, height, slices.size(), range);
+  for (size_t i = 0; i < slices.size(); ++i) draw_slice_pixels(canvas, l, slices[i], geometry[i]);
   image.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, canvas.pixels().data());
 
   // Text on top, through OpenImageIO.
@@ -53,7 +63,6 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   text.draw(x + text.width(program.name, title_font, true), l.px(40),
             "   " + std::filesystem::path(file).filename().string(), l.font(18), kTextDim, -1, false, width / 3);
   const std::string intro = "In-plane BRDF slices, log10 f (1/sr) per channel:";
-  const char* names[] = {"red", "green", "blue"};
   std::string rest = "(white where they agree); dashed: mirror direction";
   if (!program.ops.empty()) {
     char at[80];
@@ -61,6 +70,7 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
     rest += at;
   }
   int legend_y = l.px(74), swatch = l.px(22), gap = l.px(6), space = l.px(14);
+  const char* names[] = {"red", "green", "blue"};
   auto legend_width = [&](int size) {
     int w = text.width(intro, size) + text.width(rest, size);
     for (const char* name : names) w += space + swatch + gap + text.width(name, size);
@@ -70,16 +80,7 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   while (legend_font > 7 && legend_width(legend_font) > width - 2 * margin) --legend_font;
   text.draw(x, legend_y, intro, legend_font, kTextDim);
   x += text.width(intro, legend_font);
-  for (int c = 0; c < 3; ++c) {
-    x += space;
-    float rgb[3] = {kChannel[size_t(c)].r, kChannel[size_t(c)].g, kChannel[size_t(c)].b};
-    int thick = std::max(2, l.px(3));
-    int mid = legend_y - legend_font * 3 / 10;
-    OIIO::ImageBufAlgo::fill(image, rgb, OIIO::ROI(x, x + swatch, mid - thick / 2, mid - thick / 2 + thick));
-    x += swatch + gap;
-    text.draw(x, legend_y, names[c], legend_font, kText);
-    x += text.width(names[c], legend_font);
-  }
+  x = draw_channel_legend(image, text, l, x, legend_y, legend_font);
   text.draw(x + space, legend_y, rest, legend_font, kTextDim);
 
   int centre = (sphere_panel.x0 + sphere_panel.x1) / 2;

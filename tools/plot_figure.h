@@ -14,6 +14,10 @@ namespace lamina::cli::plot {
 // Draws the figure over all of `image` (3 float channels, display sRGB values): the slices at
 // `uv`, the sphere under a sky of radiance `ambient`, the title naming the material and `file`.
 // Returns false when a label could not be drawn (image.geterror() says why).
+// The channel key of the figures' legends ("red", "green", "blue", each after a swatch of its curve
+// colour), drawn from x on the text baseline y; returns where it ends.
+int draw_channel_legend(OIIO::ImageBuf& image, Text& text, const Layout& l, int x, int y, int size);
+
 bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
                  glm::vec2 uv, float ambient);
 

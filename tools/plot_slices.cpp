@@ -72,6 +72,17 @@ float SliceGeometry::y_of(float decade) const {
   return float(plot.y1) - std::clamp(t, 0.0f, 1.0f) * float(plot.y1 - plot.y0);
 }
 
+std::vector<SliceGeometry> slice_grid(const Layout& l, int top, int split, int bottom, size_t count, Decades range) {
+  const int cell_w = split / 2, cell_h = (bottom - top) / 2;
+  std::vector<SliceGeometry> geometry;
+  for (size_t i = 0; i < count; ++i) {
+    int col = int(i % 2), row = int(i / 2);
+    geometry.emplace_back(l, Rect{col * cell_w, top + row * cell_h, (col + 1) * cell_w, top + (row + 1) * cell_h},
+                          range);
+  }
+  return geometry;
+}
+
 void draw_slice_pixels(Canvas& canvas, const Layout& l, const Slice& slice, const SliceGeometry& g) {
   const Rect& plot = g.plot;
   canvas.fill(plot, kPlotBackground);
@@ -104,6 +115,21 @@ void draw_slice_pixels(Canvas& canvas, const Layout& l, const Slice& slice, cons
   canvas.fill({plot.x0, plot.y1 - line, plot.x1, plot.y1}, kFrame);
   canvas.fill({plot.x0, plot.y0, plot.x0 + line, plot.y1}, kFrame);
   canvas.fill({plot.x1 - line, plot.y0, plot.x1, plot.y1}, kFrame);
+}
+
+void draw_slice_points(Canvas& canvas, const Layout& l, const SlicePoints& points, const SliceGeometry& g) {
+  const float half = float(std::max(2, l.px(3.5)));
+  auto decade = [&](float v) { return (std::isfinite(v) && v > 0.0f) ? std::log10(v) : float(g.range.low); };
+  for (size_t k = 0; k < points.value.size(); ++k) {
+    const float x = g.x_of(points.theta_i_deg[k]);
+    for (int c = 0; c < 3; ++c) {
+      const float v = points.value[k][c], e = 2.0f * points.std_error[k][c];
+      const float y = g.y_of(decade(v));
+      canvas.add_polyline({vec2(x - half, y), vec2(x + half, y)}, 2.0f * half, g.plot, kChannel[size_t(c)]);
+      canvas.add_polyline({vec2(x, g.y_of(decade(v - e))), vec2(x, g.y_of(decade(v + e)))}, float(std::max(1.0, l.s)),
+                          g.plot, kChannel[size_t(c)]);
+    }
+  }
 }
 
 void draw_slice_labels(Text& text, const Layout& l, const Slice& slice, const SliceGeometry& g) {

@@ -40,8 +40,20 @@ struct SliceGeometry {
   float y_of(float decade) const;
 };
 
+// Where `count` slice panels go in a figure: a 2 x 2 grid filling the area left of x = split below
+// y = top, down to y = bottom.
+std::vector<SliceGeometry> slice_grid(const Layout& l, int top, int split, int bottom, size_t count, Decades range);
+
 // The panel's pixels: background, grid, the dashed mirror direction, the curves and the frame.
 void draw_slice_pixels(Canvas& canvas, const Layout& l, const Slice& slice, const SliceGeometry& g);
+// Measured points over a drawn panel, channel by channel in the curves' colours (adding up, as they
+// do): a square at each value and a bar over value +- 2 standard errors. lamina compare --plot
+// draws the reference solver's values so over the model's curves.
+struct SlicePoints {
+  std::vector<float> theta_i_deg;
+  std::vector<glm::vec3> value, std_error;
+};
+void draw_slice_points(Canvas& canvas, const Layout& l, const SlicePoints& points, const SliceGeometry& g);
 // Its text, drawn over the pixels: tick labels, the title and the axis labels.
 void draw_slice_labels(Text& text, const Layout& l, const Slice& slice, const SliceGeometry& g);
 

@@ -73,6 +73,8 @@ TEST_CASE("an output that is also an input is refused before anything is written
       {"glsl car.json -o car.glsl --uniforms --interface ./car.json", "./car.json is also an input"},
       {"glsl car.json -o hard_link.json", "hard_link.json is also an input"},
       {"plot patina.json -o textures/patina_mask.png", "textures/patina_mask.png is also an input"},
+      {"compare patina.json --albedo-walks 4 --slice-walks 1 --plot textures/patina_mask.png",
+       "textures/patina_mask.png is also an input"},
       {"glsl car.json -o /dev/null --interface car.json", "car.json is also an input"},
   };
   for (const Case& c : cases) {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -396,4 +397,66 @@ TEST_CASE("lamina compare prints the model against the reference, as text and JS
   auto invalid = test::run_cli(std::string("compare ") + kInvalid, test::source_dir());
   CHECK(invalid.exit_code == 2);
   CHECK(invalid.out.empty());
+}
+
+TEST_CASE(
+    "lamina compare --plot draws the model's albedo and slices with the reference's points, and nothing for "
+    "mistakes") {
+  // A bare Lambert base, which the model and the reference both know exactly: in the albedo panel each
+  // channel is a flat line at its albedo.
+  test::TempDir dir;
+  std::ofstream(dir.path() / "paper.json") << R"({"format": 1, "materials": [{"name": "paper", "surface": "@paper",
+    "nodes": [{"id": "paper", "type": "substrate/lambert", "albedo": [0.2, 0.5, 0.8]}]}]})";
+  auto r =
+      test::run_cli("compare paper.json --albedo-walks 256 --slice-walks 16 --size 800 --plot paper.png", dir.path());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("summary: albedo error at most") != std::string::npos);  // the table is printed too
+  auto image = load_image_file(dir.path() / "paper.png", false);
+  REQUIRE(image->width == 800);
+  REQUIRE(image->height == 400);
+  auto pixel = [&](int x, int y) { return glm::vec3(image->texels[size_t(y) * size_t(image->width) + size_t(x)]); };
+  // The layout (tools/plot_compare.cpp) at 800 x 400: the albedo axes span x 513..789 for 0..90
+  // degrees and y 372..68 for albedo 0..1. At 47 degrees, between the reference's points at 40 and
+  // 50 and off the grid, only the model's lines are drawn: red at 0.2, green at 0.5, blue at 0.8, and
+  // nothing between.
+  const int x = int(std::lround(513.0 + 276.0 * 47.0 / 90.0));
+  auto y_of = [](double a) { return int(std::lround(372.0 - 304.0 * a)); };
+  auto strongest = [&](int y) {
+    glm::vec3 best(0.0f);
+    for (int dy = -2; dy <= 2; ++dy) best = glm::max(best, pixel(x, y + dy));
+    return best;
+  };
+  const glm::vec3 red = strongest(y_of(0.2)), green = strongest(y_of(0.5)), blue = strongest(y_of(0.8));
+  CHECK(red.x > 0.6f);
+  CHECK(red.x > 2.0f * std::max(red.y, red.z));
+  CHECK(green.y > 0.6f);
+  CHECK(green.y > 2.0f * std::max(green.x, green.z));
+  CHECK(blue.z > 0.6f);
+  CHECK(blue.z > 1.5f * std::max(blue.x, blue.y));
+  CHECK(glm::length(pixel(x, y_of(0.65))) < 0.15f);  // the panel's background
+  // The reference's squares at 40 and 50 degrees sit on the same lines.
+  for (int theta : {40, 50}) {
+    const int xr = int(std::lround(513.0 + 276.0 * theta / 90.0));
+    CHECK(pixel(xr, y_of(0.8)).z > 0.6f);
+  }
+  // The four slice panels hold their curves and points.
+  for (int cell = 0; cell < 4; ++cell) {
+    CAPTURE(cell);
+    const int x0 = (cell % 2) * 240, y0 = 46 + (cell / 2) * 177;
+    std::set<std::array<float, 3>> colours;
+    for (int y = y0; y < y0 + 177; ++y)
+      for (int xx = x0; xx < x0 + 240; ++xx) colours.insert({pixel(xx, y).x, pixel(xx, y).y, pixel(xx, y).z});
+    CHECK(colours.size() > 20);
+  }
+
+  test::TempDir empty;
+  std::ofstream(empty.path() / "paper.json") << test::read_file(dir.path() / "paper.json");
+  for (const char* bad : {" --plot paper.unknown", " --plot paper.png --size 10"}) {
+    auto run = test::run_cli(std::string("compare paper.json --albedo-walks 16 --slice-walks 4") + bad, empty.path());
+    INFO(bad << ": " << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK(run.out.empty());
+  }
+  CHECK(test::listing(empty.path()) == std::vector<std::string>{"paper.json"});
 }

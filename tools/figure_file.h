@@ -1,0 +1,34 @@
+// The image file of a figure (`lamina plot`, `lamina compare --plot`): its size and format are
+// checked and the fonts found before any work, and the finished image is encoded in memory and
+// written by the one writer, complete or absent.
+#pragma once
+
+#include <OpenImageIO/imagebuf.h>
+#include <string>
+
+#include "tools/plot_text.h"
+
+namespace lamina::cli {
+
+inline constexpr int kFigureMinSize = 800;
+inline constexpr int kFigureMaxSize = 8192;
+inline constexpr int kFigureDefaultSize = 1600;
+
+struct FigureFile {
+  std::string path;    // as given with `option`
+  std::string format;  // the OpenImageIO format its extension names
+  int width = kFigureDefaultSize;
+  plot::Fonts fonts;
+};
+
+// Checks the width (`--size`, the height is half of it) and that `path` names a format OpenImageIO
+// writes, and finds the fonts; prints the problem and returns its exit code otherwise.
+int prepare_figure(const std::string& option, const std::string& path, int width, FigureFile& figure);
+
+// The image to draw on: width x width / 2, 3 float channels.
+OIIO::ImageBuf figure_image(const FigureFile& figure);
+
+// Encodes `image` (display sRGB) with `description` and writes it; an exit code.
+int write_figure(OIIO::ImageBuf& image, const FigureFile& figure, const std::string& description);
+
+}  // namespace lamina::cli
