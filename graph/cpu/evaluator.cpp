@@ -166,7 +166,7 @@ struct Local {
   Sample draw(const Selection& s, int chosen, vec3 wo, vec2 u, const std::vector<int>& entry_lobe) const {
     Sample out;
     if (chosen < 0) return out;
-    const vec3 wi = k::lamina_stack_sample(entries, params, s.v.data(), chosen, u);
+    const vec3 wi = k::lamina_stack_sample(count, entries, params, s.v.data(), chosen, u);
     if (wi.z <= 0.0f) return out;
     out.wi = wi;
     out.lobe = entry_lobe[size_t(chosen)];

@@ -306,7 +306,7 @@ class MaterialEmitter final : public OpWriter {
               {"vec3 wo", "vec2 u", "float u_layer", "LaminaContext ctx", "out vec3 wi", "out float pdf"}, " {");
     s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params << select;
     s << "  int chosen = lamina_stack_choose(" << count() << ", weight, u_layer);\n";
-    s << "  vec3 d = lamina_stack_sample(" << entries() << ", params, v, chosen, u);\n";
+    s << "  vec3 d = lamina_stack_sample(" << count() << ", " << entries() << ", params, v, chosen, u);\n";
     s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
     s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
     s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";

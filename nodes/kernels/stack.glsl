@@ -667,30 +667,39 @@ LAMINA_FN int lamina_stack_choose(int count, LAMINA_IN_ARRAY(float) weight[LAMIN
 
 // A direction drawn from the lobe of entry `chosen` (of the selection whose v is given) with u,
 // carried up to the outside through the layers above it (refract_up, bottom to top); vec3(0) if
-// none could be drawn or it cannot leave.
-LAMINA_FN vec3 lamina_stack_sample(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+// none could be drawn or it cannot leave. Every entry is read at a loop's own index, never at the
+// data-dependent `chosen`: unrolled, a GLSL compiler reads the stack's constants and runs each
+// lobe's own sampling code where it is chosen.
+LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK],
                                    LAMINA_IN_ARRAY(vec3) v[LAMINA_STACK], int chosen, vec2 u) {
   if (chosen < 0) return vec3(0.0f);
   bool inside_cone = true;
   vec3 w = vec3(0.0f);
-  if (lamina_is_microfacet_lobe(entries[chosen])) {
-    w = lamina_sample_microfacet_lobe(entries[chosen].distribution, params[chosen].m, v[chosen], u,
-                                      params[chosen].n_above, inside_cone);
-  } else {
-    w = lamina_sample_diffuse_lobe(u, params[chosen].n_above);
+  for (int i = 0; i < count; ++i) {
+    if (i == chosen) {
+      if (lamina_is_microfacet_lobe(entries[i])) {
+        w = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i], u, params[i].n_above,
+                                          inside_cone);
+      } else {
+        w = lamina_sample_diffuse_lobe(u, params[i].n_above);
+      }
+    }
   }
   if (w.z <= 0.0f) return vec3(0.0f);
-  // Up the chain of parents, as a counted loop (see the top of the composition).
+  // Up through the layers above it, nearest first: bottom up, an entry is on the way when it is the
+  // chosen one or the parent of one on the way (children come after their parents).
+  bool on_way[LAMINA_STACK];
   bool leaves = true;
-  int j = inside_cone ? entries[chosen].parent : -1;
-  for (int n = 0; n < LAMINA_STACK; ++n) {
-    if (j >= 0 && leaves) {
-      if (entries[j].kind == LAMINA_LAYER) {
-        w = refract_up(w, params[j].eta);
-        leaves = w.z > 0.0f;
-      }
-      j = entries[j].parent;
+  for (int i = count - 1; i >= 0; --i) {
+    int kind = entries[i].kind;
+    bool below = false;
+    if (kind == LAMINA_LAYER) below = on_way[entries[i].first];
+    if (kind == LAMINA_MIX) below = on_way[entries[i].first] || on_way[entries[i].second];
+    on_way[i] = i == chosen || below;
+    if (below && kind == LAMINA_LAYER && inside_cone && leaves) {
+      w = refract_up(w, params[i].eta);
+      leaves = w.z > 0.0f;
     }
   }
   if (!leaves) return vec3(0.0f);

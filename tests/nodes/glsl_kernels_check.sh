@@ -114,7 +114,7 @@ void main() {
   bool valid[LAMINA_STACK];
   lamina_stack_select(LAMINA_STACK, entries, params, v, weight, sv, valid);
   int chosen = lamina_stack_choose(LAMINA_STACK, weight, c);
-  s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(entries, params, sv, chosen, v_uv);
+  s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(LAMINA_STACK, entries, params, sv, chosen, v_uv);
   s += lamina_substrate_eval(entries[2], params[2], w, v);
   f += lamina_stack_pdf(LAMINA_STACK, entries, params, weight, sv, valid, w, v);
   // energy
