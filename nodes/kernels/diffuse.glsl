@@ -3,11 +3,6 @@
 // Lambert's law: a constant BRDF albedo / pi.
 LAMINA_FN vec3 lambert(vec3 albedo) { return albedo * LAMINA_INV_PI; }
 
-// The course's Oren-Nayar shader (Weidlich and Wilkie course, sec. 3.3.1, after L. Gritz; the
-// model of Oren and Nayar 1994 with its inter-reflection term) turned into a BRDF: the shader's
-// radiance (L1 + L2) divided by cos_i, times 1/pi. Symmetric in wi and wo; sigma = 0 gives
-// exactly lambert(albedo). Where the course's formula turns negative (sigma above about 0.65, both
-// directions near grazing on opposite sides of the normal) the result is clamped to 0.
 // The part of the course's Oren-Nayar BRDF that depends on neither direction, over albedo / pi:
 // C1 = 1 - 0.5 s2 / (s2 + 0.33), s2 = sigma^2 (Weidlich and Wilkie course, sec. 3.3.1).
 LAMINA_FN float oren_nayar_uniform(float sigma) {
@@ -15,6 +10,11 @@ LAMINA_FN float oren_nayar_uniform(float sigma) {
   return 1.0f - 0.5f * s2 / (s2 + 0.33f);
 }
 
+// The course's Oren-Nayar shader (Weidlich and Wilkie course, sec. 3.3.1, after L. Gritz; the
+// model of Oren and Nayar 1994 with its inter-reflection term) turned into a BRDF: the shader's
+// radiance (L1 + L2) divided by cos_i, times 1/pi. Symmetric in wi and wo; sigma = 0 gives
+// exactly lambert(albedo). Where the course's formula turns negative (sigma above about 0.65, both
+// directions near grazing on opposite sides of the normal) the result is clamped to 0.
 LAMINA_FN vec3 oren_nayar(vec3 wi, vec3 wo, vec3 albedo, float sigma) {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return vec3(0.0f);
   // alpha = max(theta_i, theta_o) has the smaller cosine, beta = min(theta_i, theta_o) the larger.
