@@ -478,7 +478,9 @@ TEST_CASE("kernels: oren_nayar keeps its digits at grazing directions on opposit
     const double inter = albedo * albedo * 0.17 * s2 / (s2 + 0.13) * (1.0 - cp * 4.0 * b * b / (kPi * kPi));
     return std::max(direct + inter, 0.0) / kPi;
   };
-  for (double theta : {80.0, 89.0, 89.9, 89.99})
+  // 75.5 and 75.6 deg lie either side of cos(beta) = 1/4, where the kernel changes how it computes
+  // 1 - 2 beta / pi.
+  for (double theta : {70.0, 75.5, 75.6, 80.0, 89.0, 89.9, 89.99})
     for (float sigma : {0.27f, 0.5f}) {
       CAPTURE(theta);
       CAPTURE(sigma);
