@@ -1,7 +1,10 @@
 #include "graph/cpu/energy_table.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "graph/cpu/microsurface.h"
+#include "graph/cpu/pcg32.h"
 #include "graph/parallel.h"
 #include "nodes/kernels/kernels.h"
 
@@ -33,6 +36,41 @@ double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, flo
   return sum / (double(n) * double(n));
 }
 
+double height_correlated_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
+  const vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+  const double lambda_v = double(k::lamina_smith_lambda(distribution, v, m));
+  double sum = 0.0;
+  for (int a = 0; a < n; ++a) {
+    for (int b = 0; b < n; ++b) {
+      vec2 u((float(a) + 0.5f) / float(n), (float(b) + 0.5f) / float(n));
+      vec3 h = k::sample_microfacet_normal(distribution, m, u);
+      float v_dot_h = glm::dot(v, h);
+      if (v_dot_h <= 0.0f) continue;
+      vec3 l = 2.0f * v_dot_h * h - v;
+      if (l.z <= 0.0f) continue;
+      l = glm::normalize(l);
+      // f cos_l / pdf with pdf = D cos_h / (4 v.h): F G2 v.h / (cos_v cos_h).
+      const double g2 = 1.0 / (1.0 + lambda_v + double(k::lamina_smith_lambda(distribution, l, m)));
+      const double f = double(k::lamina_fresnel_dielectric(fresnel, v_dot_h, eta));
+      sum += f * g2 * double(v_dot_h) / (double(mu) * double(h.z));
+    }
+  }
+  return sum / (double(n) * double(n));
+}
+
+double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks,
+                                 uint64_t seed) {
+  const MicrosurfaceBoundary boundary{eta, distribution, fresnel, m};
+  const vec3 from(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+  Pcg32 rng(seed, 0x6d756c7469ull);
+  double sum = 0.0;
+  for (int w = 0; w < walks; ++w) {
+    const MicrosurfaceSample s = microsurface_sample(boundary, from, rng);
+    if (s.events >= 2 && s.direction.z > 0.0f) sum += double(s.weight);
+  }
+  return sum / double(walks);
+}
+
 int dielectric_albedo_table_entry(int combo, int i, int j, int k_) {
   const int distribution = combo / 2;
   const int fresnel = combo % 2;  // 0 exact, 1 Schlick (the same table as Lazanyi)
@@ -42,29 +80,140 @@ int dielectric_albedo_table_entry(int combo, int i, int j, int k_) {
   return int(std::min(65535.0, std::ceil(std::max(0.0, e) * 65535.0)));
 }
 
+int dielectric_multiple_table_entry(int combo, int i, int j, int k_, int single) {
+  const int distribution = combo / 2;
+  const int fresnel = combo % 2;
+  const float eta = k::lamina_albedo_node_eta(i);
+  const float mu = k::lamina_albedo_node_cosine(k_, eta);
+  const float m = k::lamina_albedo_node_slope(j);
+  const uint64_t node =
+      uint64_t(((combo * k::LAMINA_ALBEDO_ETAS + i) * k::LAMINA_ALBEDO_SLOPES + j) * k::LAMINA_ALBEDO_COSINES + k_);
+  const double whole = height_correlated_albedo_quadrature(distribution, fresnel, mu, m, eta, kAlbedoTableStrata) +
+                       multiply_scattered_albedo(distribution, fresnel, mu, m, eta, kMultipleScatteringWalks, node + 1);
+  const int surplus = int(std::lround(std::max(0.0, whole - double(single) / 65535.0) * 65535.0));
+  return std::clamp(surplus, 0, 65535 - single);
+}
+
+namespace {
+
+constexpr int kCellsI = k::LAMINA_ALBEDO_ETAS - 1;
+constexpr int kCellsJ = k::LAMINA_ALBEDO_SLOPES - 1;
+constexpr int kCellsK = k::LAMINA_ALBEDO_COSINES - 1;
+
+// Corner n (0..7) of the cell whose first corner is node (i, j, c): bit 0 steps in eta, 1 in slope,
+// 2 in cosine.
+int corner_i(int i, int n) { return i + (n & 1); }
+int corner_j(int j, int n) { return j + ((n >> 1) & 1); }
+int corner_c(int c, int n) { return c + (n >> 2); }
+
+// Nodes of an index-matched boundary (reflecting nothing) and of a smooth one (the Fresnel
+// reflectance, exactly) are never raised.
+bool may_rise(int i, int j) { return k::lamina_albedo_node_eta(i) != 1.0f && j != 0; }
+
+// E at the centre of the cell whose first corner is node (i, j, c).
+double cell_centre(int combo, int i, int j, int c) {
+  const float eta = k::lamina_albedo_grid_eta(float(i) + 0.5f);
+  return dielectric_albedo_quadrature(combo / 2, combo % 2, k::lamina_albedo_grid_cosine(float(c) + 0.5f, eta),
+                                      k::lamina_albedo_grid_slope(float(j) + 0.5f), eta, kAlbedoTableStrata);
+}
+
+// What a cell asks of each of its corners that may rise: kAlbedoBoundMargin times the shortfall of
+// the interpolation of the corners' entries (`corners`, in corner order) at its centre, over the
+// share of the centre's interpolation those corners carry; 0 if the interpolation does not fall short.
+int cell_lift(int i, int j, const int corners[8], double centre) {
+  double interpolated = 0.0, free_weight = 0.0;
+  for (int n = 0; n < 8; ++n) {
+    interpolated += 0.125 * corners[n];
+    if (may_rise(corner_i(i, n), corner_j(j, n))) free_weight += 0.125;
+  }
+  const double short_by = centre * 65535.0 - interpolated;
+  if (short_by <= 0.0 || free_weight <= 0.0) return 0;
+  return int(std::ceil(kAlbedoBoundMargin * short_by / free_weight));
+}
+
+}  // namespace
+
 std::vector<int> dielectric_albedo_table() {
-  const int per_eta = k::LAMINA_ALBEDO_SLOPES * k::LAMINA_ALBEDO_COSINES;
-  const int etas = k::LAMINA_ALBEDO_COMBOS * k::LAMINA_ALBEDO_ETAS;
-  std::vector<int> table(size_t(etas) * size_t(per_eta));
-  parallel_for(size_t(etas), [&](size_t row) {
-    int combo = int(row) / k::LAMINA_ALBEDO_ETAS;
-    int i = int(row) % k::LAMINA_ALBEDO_ETAS;
-    for (int j = 0; j < k::LAMINA_ALBEDO_SLOPES; ++j)
-      for (int c = 0; c < k::LAMINA_ALBEDO_COSINES; ++c)
-        table[row * size_t(per_eta) + size_t(j * k::LAMINA_ALBEDO_COSINES + c)] =
-            dielectric_albedo_table_entry(combo, i, j, c);
+  const int rows = k::LAMINA_ALBEDO_COMBOS * k::LAMINA_ALBEDO_ETAS;
+  const int width = k::LAMINA_ALBEDO_TABLE_WIDTH;
+  std::vector<int> table(size_t(rows) * size_t(width));
+  // One task per (row, slope): the walks dominate and vary with the slope.
+  parallel_for(size_t(rows * k::LAMINA_ALBEDO_SLOPES), [&](size_t task) {
+    const int row = int(task) / k::LAMINA_ALBEDO_SLOPES;
+    const int j = int(task) % k::LAMINA_ALBEDO_SLOPES;
+    const int combo = row / k::LAMINA_ALBEDO_ETAS;
+    const int i = row % k::LAMINA_ALBEDO_ETAS;
+    int* at = table.data() + size_t(row) * size_t(width);
+    for (int c = 0; c < k::LAMINA_ALBEDO_COSINES; ++c) {
+      const int single = dielectric_albedo_table_entry(combo, i, j, c);
+      at[j * k::LAMINA_ALBEDO_COSINES + c] = single;
+      at[k::LAMINA_ALBEDO_MULTIPLE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c] =
+          dielectric_multiple_table_entry(combo, i, j, c, single);
+    }
   });
+  // Every cell's lift, then every node raised by the most its cells ask.
+  auto entry = [&](int combo, int i, int j, int c) -> int& {
+    return table[size_t(combo * k::LAMINA_ALBEDO_ETAS + i) * size_t(width) + size_t(j * k::LAMINA_ALBEDO_COSINES + c)];
+  };
+  std::vector<int> lift(size_t(k::LAMINA_ALBEDO_COMBOS * kCellsI * kCellsJ * kCellsK));
+  parallel_for(size_t(k::LAMINA_ALBEDO_COMBOS * kCellsI), [&](size_t task) {
+    const int combo = int(task) / kCellsI, i = int(task) % kCellsI;
+    for (int j = 0; j < kCellsJ; ++j)
+      for (int c = 0; c < kCellsK; ++c) {
+        int corners[8];
+        for (int n = 0; n < 8; ++n) corners[n] = entry(combo, corner_i(i, n), corner_j(j, n), corner_c(c, n));
+        lift[(task * size_t(kCellsJ) + size_t(j)) * size_t(kCellsK) + size_t(c)] =
+            cell_lift(i, j, corners, cell_centre(combo, i, j, c));
+      }
+  });
+  std::vector<int> raise(table.size(), 0);
+  for (int combo = 0; combo < k::LAMINA_ALBEDO_COMBOS; ++combo)
+    for (int i = 0; i < kCellsI; ++i)
+      for (int j = 0; j < kCellsJ; ++j)
+        for (int c = 0; c < kCellsK; ++c)
+          for (int n = 0; n < 8; ++n) {
+            if (!may_rise(corner_i(i, n), corner_j(j, n))) continue;
+            const size_t node = size_t(combo * k::LAMINA_ALBEDO_ETAS + corner_i(i, n)) * size_t(width) +
+                                size_t(corner_j(j, n) * k::LAMINA_ALBEDO_COSINES + corner_c(c, n));
+            raise[node] = std::max(
+                raise[node],
+                lift[((size_t(combo * kCellsI + i) * size_t(kCellsJ)) + size_t(j)) * size_t(kCellsK) + size_t(c)]);
+          }
+  for (size_t row = 0; row < size_t(rows); ++row)
+    for (int e = 0; e < k::LAMINA_ALBEDO_BLOCK; ++e) {
+      const size_t at = row * size_t(width) + size_t(e);
+      table[at] = std::min(table[at] + raise[at], 65535);
+      int& multiple = table[at + size_t(k::LAMINA_ALBEDO_MULTIPLE_COLUMN)];
+      multiple = std::min(multiple, 65535 - table[at]);
+    }
   return table;
+}
+
+int dielectric_albedo_bounded_entry(int combo, int i, int j, int c) {
+  const int own = dielectric_albedo_table_entry(combo, i, j, c);
+  if (!may_rise(i, j)) return own;
+  int raise = 0;
+  // The cells of which the node is a corner: first corners one step below it on each axis, or at it.
+  for (int n = 0; n < 8; ++n) {
+    const int ci = i - (n & 1), cj = j - ((n >> 1) & 1), cc = c - (n >> 2);
+    if (ci < 0 || cj < 0 || cc < 0 || ci >= kCellsI || cj >= kCellsJ || cc >= kCellsK) continue;
+    int corners[8];
+    for (int m = 0; m < 8; ++m)
+      corners[m] = dielectric_albedo_table_entry(combo, corner_i(ci, m), corner_j(cj, m), corner_c(cc, m));
+    raise = std::max(raise, cell_lift(ci, cj, corners, cell_centre(combo, ci, cj, cc)));
+  }
+  return std::min(own + raise, 65535);
 }
 
 std::string dielectric_albedo_inc(const std::vector<int>& table) {
   std::string text =
       "// Generated from the kernels by graph/cpu/energy_table.cpp (LAMINA_UPDATE_TABLES=1 lamina_tests\n"
-      "// -tc='the dielectric albedo table*'): round(65535 E) of energy.glsl's grid, a row per cosine run.\n";
+      "// -tc='the dielectric albedo table*'): energy.glsl's table, a row per cosine run, the runs of E\n"
+      "// and then those of M for each (combination, eta).\n";
   for (size_t at = 0; at < table.size(); ++at) {
     text += std::to_string(table[at]);
-    bool row_end = (at + 1) % size_t(k::LAMINA_ALBEDO_COSINES) == 0;
-    text += at + 1 == table.size() ? "\n" : row_end ? ",\n" : ", ";
+    const bool run_end = (at + 1) % size_t(k::LAMINA_ALBEDO_COSINES) == 0;
+    text += at + 1 == table.size() ? "\n" : run_end ? ",\n" : ", ";
   }
   return text;
 }

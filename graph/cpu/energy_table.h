@@ -2,6 +2,7 @@
 // directional albedo of lamina_boundary_reflection by quadrature over its normals.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -11,15 +12,48 @@ namespace lamina::cpu {
 // cosine mu, on n x n strata of the distribution's normal sampling (sample_microfacet_normal).
 double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n);
 
+// The same integral for the reflection of one scattering event on the Smith microsurface the
+// reference solver walks (graph/cpu/microsurface.h), whose masking and shadowing are height-correlated:
+// G2 = 1 / (1 + Lambda(l) + Lambda(v)) (Heitz 2014, "Understanding the Masking-Shadowing Function in
+// Microfacet-Based BRDFs", eq. 99) in place of the model's G1(l) G1(v).
+double height_correlated_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n);
+
+// What that microsurface reflects after scattering two or more times (Heitz, Hanika, d'Eon and
+// Dachsbacher 2016): the mean over `walks` random walks from a view of cosine mu of the weight of
+// those that leave above after two events or more. Deterministic for a seed.
+double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks, uint64_t seed);
+
 // The strata per side dielectric_albedo_table uses.
 inline constexpr int kAlbedoTableStrata = 192;
 
-// Every entry of the table, in the kernels' order (combination, eta, slope, cosine): round(65535 E),
-// rounded up, so that 1 - E never exceeds what the boundary lets through by rounding.
-std::vector<int> dielectric_albedo_table();
+// The walks per node for the multiply scattered part: a standard error of at most sqrt(E_ms / 32768),
+// 0.0011 where E_ms reaches 0.04.
+inline constexpr int kMultipleScatteringWalks = 32768;
 
-// One entry, computed as dielectric_albedo_table computes it.
+// The whole table in the kernels' order (albedo_grid.glsl: a row per combination and eta, each of
+// the blocks E and M): E as round(65535 E) rounded up and then raised to bound E between the nodes
+// too (below); M as round(65535 M), at most 65535 - E.
+//
+// Why E is raised: the energy-conserving composition lets 1 - E - M through a boundary whose lobe
+// reflects its true E (times its gain), so wherever the table's E falls short the two add up to more
+// than 1. Interpolation falls short between nodes where E curves (grazing views of smooth
+// boundaries): for every cell of the grid, the interpolation at its centre is compared with E
+// there, and the cell's corners are raised by kAlbedoBoundMargin times the shortfall (each node by
+// the most any of its cells asks), except the nodes at eta = 1, which stay 0 (an index-matched
+// boundary reflects nothing), and at m = 0, which stay the Fresnel reflectance (a smooth boundary
+// reflects exactly that). M is lowered where E + M would exceed 1.
+std::vector<int> dielectric_albedo_table();
+inline constexpr double kAlbedoBoundMargin = 1.5;
+
+// One entry of E as the table holds it: the quadrature's, raised as above.
+int dielectric_albedo_bounded_entry(int combo, int i, int j, int k);
+
+// One entry of E as the quadrature gives it, before the raise.
 int dielectric_albedo_table_entry(int combo, int i, int j, int k);
+
+// One entry of M before the final cap at 65535 - E, given the node's entry of E before the raise
+// (`single`).
+int dielectric_multiple_table_entry(int combo, int i, int j, int k, int single);
 
 // The text of nodes/kernels/dielectric_albedo.inc for a table.
 std::string dielectric_albedo_inc(const std::vector<int>& table);

@@ -61,6 +61,7 @@ MicrosurfaceSample microsurface_sample(const MicrosurfaceBoundary& b, vec3 x, Pc
     if (s.height > 1.0f) {
       result.direction = s.to_side(s.travel);
       result.weight = weight;
+      result.events = event;
       return result;
     }
     if (!scatter(b, s, weight, rng)) return result;

@@ -23,6 +23,7 @@ struct MicrosurfaceBoundary {
 struct MicrosurfaceSample {
   glm::vec3 direction{0.0f};  // where the light leaves, pointing away from the boundary; 0 if lost
   float weight = 0.0f;        // the walk's sampling weight
+  int events = 0;             // how many times it scattered on the microsurface before leaving
 };
 
 // Follows light arriving from x (pointing away from the boundary, either side) over the

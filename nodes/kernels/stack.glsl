@@ -241,21 +241,22 @@ struct LaminaParams {
 // diffuse part, is light that has lost its direction in a diffuse substrate, and c is a constant of
 // the entry (LaminaParams.diffuse). A diffuse substrate has u = 1 and c = albedo / pi (Oren-Nayar:
 // its direction-free C1 share) and s = f - c; a conductor only s; a mix only s (both its stacks
-// whole). A layer of relative index eta over a base B, with T(mu) = 1 - E(mu) the energy its boundary
-// lets through (energy.glsl) and t(mu') = exp(-sigma d / mu') the medium's one-way transmittance:
-//   s(l, v) = f_boundary(l, v) + T(l) t(l') T(v) t(v') / eta^2 s_B(l', v'),
-// f_boundary being lamina_boundary_reflection,
+// whole). A layer of relative index eta over a base B, with T(mu) = 1 - E(mu) - M(mu) the energy its
+// boundary lets through (energy.glsl: E its single-scattering lobe's albedo, M what its microsurface
+// reflects beyond it) and t(mu') = exp(-sigma d / mu') the medium's one-way transmittance:
+//   s(l, v) = f_boundary(l, v) (1 + min(M(l) / E(l), M(v) / E(v))) + T(l) t(l') T(v) t(v') / eta^2 s_B(l', v'),
+// f_boundary being lamina_boundary_reflection, raised so that it reflects what the microsurface does,
 //   u(w) = T(w) t(w') u_B(w'),   c = c_B / (eta^2 (1 - K)).
 // The 1 / eta^2 is the radiance a ray loses crossing out of the denser medium (Veach 1997, sec.
 // 5.2): with it the base's light leaves the layer with exactly the energy it had below. K is the
 // share of the diffuse light the base sends up that comes back to it after reflecting off the
-// boundary from below (totally outside the exit cone, E(mu_out) inside), so c sums every round
+// boundary from below (totally outside the exit cone, E(mu_out) + M(mu_out) inside), so c sums every round
 // trip, 1 + K + K^2 + ...: a Lambert base's light bounces under the boundary until it leaves or is
 // absorbed, which is most of the energy of a white base under a clear coat. Light the specular
 // part s sends into the boundary from below is not followed further (it is lost, never created).
 // Every factor is symmetric in l and v, so the sum is reciprocal; each step passes on at most the
-// energy it received (R + T = 1 at the boundary, t <= 1, and a base's diffuse reflectance at most
-// 1), so no stack reflects more than it receives.
+// energy it received (the boundary reflects at most E + M = 1 - T, t <= 1, and a base's diffuse
+// reflectance is at most 1), so no stack reflects more than it receives.
 
 // The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
 // refract_down computes it; 0 when it cannot enter.
@@ -267,11 +268,17 @@ LAMINA_FN float lamina_cosine_below(float mu, float eta) {
 }
 
 // What passes one way through a layer for a direction of cosine mu above it whose refracted cosine
-// is mu_below (<= 0: it cannot enter): T(mu) t(mu_below).
-LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below) {
+// is mu_below (<= 0: it cannot enter): T(mu) t(mu_below), T = 1 - E - M what the boundary lets
+// through (energy.glsl). gain receives M(mu) / E(mu), by how much the boundary's multiple scattering
+// raises its single-scattering lobe at mu (0 where E = 0).
+LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below,
+                                    LAMINA_OUT(float) gain) {
+  float multiple = 0.0f;
+  float reflected = lamina_boundary_energy(e.distribution, e.fresnel, mu, p.m, p.eta, multiple);
+  float single = reflected - multiple;
+  gain = single > 0.0f ? multiple / single : 0.0f;
   if (mu_below <= 0.0f) return vec3(0.0f);
-  float transmittance = 1.0f - lamina_dielectric_albedo(e.distribution, e.fresnel, mu, p.m, p.eta);
-  return transmittance * one_way_absorption(p.absorption, p.thickness, mu_below);
+  return (1.0f - reflected) * one_way_absorption(p.absorption, p.thickness, mu_below);
 }
 
 // u(mu) of the entry `start`: the passages down the chain of layers to its diffuse substrate.
@@ -285,7 +292,8 @@ LAMINA_FN vec3 lamina_diffuse_profile(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMIN
     walking = walking && j >= 0 && entries[max(j, 0)].kind == LAMINA_LAYER;
     if (walking) {
       float below = lamina_cosine_below(c, params[j].eta);
-      u = u * lamina_layer_passage(entries[j], params[j], c, below);
+      float gain = 0.0f;
+      u = u * lamina_layer_passage(entries[j], params[j], c, below, gain);
       c = below;
       j = entries[j].first;
     }
@@ -332,7 +340,9 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     // Inside the cone, by the outer cosine.
     float mu_out = mix(mu_out_least, 1.0f, lamina_gauss5_node(q));
     float mu_in = lamina_safe_sqrt(1.0f - (1.0f - mu_out * mu_out) * inv_eta2);
-    float reflected = lamina_dielectric_albedo(entries[i].distribution, entries[i].fresnel, mu_out, params[i].m, eta);
+    float multiple = 0.0f;
+    float reflected =
+        lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, mu_out, params[i].m, eta, multiple);
     u = lamina_diffuse_profile(entries, params, base, mu_in);
     t = one_way_absorption(params[i].absorption, params[i].thickness, mu_in);
     float span = (1.0f - mu_out_least) * inv_eta2;
@@ -507,12 +517,15 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
     } else if (kind == LAMINA_LAYER) {
       vec3 lb = refract_down(l, params[i].eta);
       vec3 vb = refract_down(v, params[i].eta);
+      float gain_l = 0.0f;
+      float gain_v = 0.0f;
+      u_l[i] = lamina_layer_passage(entries[i], params[i], l.z, lb.z, gain_l);
+      u_v[i] = lamina_layer_passage(entries[i], params[i], v.z, vb.z, gain_v);
       s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
-                                               params[i].m));
+                                               params[i].m) *
+                    (1.0f + min(gain_l, gain_v)));
       s[i].l_on = lb;
       s[i].v_on = vb;
-      u_l[i] = lamina_layer_passage(entries[i], params[i], l.z, lb.z);
-      u_v[i] = lamina_layer_passage(entries[i], params[i], v.z, vb.z);
       s[i].carry = u_l[i] * u_v[i] / (params[i].eta * params[i].eta);
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;

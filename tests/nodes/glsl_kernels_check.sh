@@ -121,7 +121,12 @@ void main() {
   f += lamina_dielectric_albedo(0, 0, c, m, 1.5f) + lamina_albedo_node_eta(1) + lamina_albedo_node_slope(1);
   f += lamina_boundary_reflection(w, v, 1.5f, 1, 0, m);
   f += lamina_albedo_node_cosine(1, 0.7f) + lamina_albedo_axis_cosine(c, 0.7f) + oren_nayar_uniform(0.3f);
+  f += lamina_albedo_grid_eta(0.5f) + lamina_albedo_grid_slope(0.5f) + lamina_albedo_grid_cosine(0.5f, 0.7f);
+  float multiple = 0.0f;
+  f += lamina_boundary_energy(2, 1, c, m, 1.5f, multiple) + multiple;
+  f += lamina_albedo_interpolate(lamina_albedo_point(0, 0, c, m, 0.7f), LAMINA_ALBEDO_MULTIPLE_COLUMN);
   s += one_way_absorption(vec3(0.1f), 0.5f, c) + lamina_diffuse_profile(entries, params, 0, c);
+  s += lamina_layer_passage(entries[0], params[0], c, 0.5f, multiple);
   s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
