@@ -14,8 +14,14 @@ namespace k = lamina::kernels;
 using glm::vec2;
 using glm::vec3;
 
-double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
-  const vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+namespace {
+
+// The mean over n x n strata of the distribution's normal sampling (sample_microfacet_normal) of
+// integrand(l, h, v.h), l the view v mirrored about the drawn normal h (draws whose v.h or l.z is not
+// positive add 0): an integral over the upper hemisphere of l, for an integrand that divides by
+// the density of l.
+template <typename Integrand>
+double over_mirrored_directions(int distribution, float m, vec3 v, int n, Integrand integrand) {
   double sum = 0.0;
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
@@ -25,43 +31,42 @@ double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, flo
       if (v_dot_h <= 0.0f) continue;
       vec3 l = 2.0f * v_dot_h * h - v;
       if (l.z <= 0.0f) continue;
-      l = glm::normalize(l);
-      // The density of l: D(h) cos_h / (4 v.h) (Walter et al. 2007, eq. 14), with D from h's
-      // components as the evaluation computes it (for narrow lobes cos_h rounds to 1).
-      double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
-      if (!(pdf > 0.0)) continue;
-      sum += double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf;
+      sum += integrand(glm::normalize(l), h, v_dot_h);
     }
   }
   return sum / (double(n) * double(n));
 }
 
+vec3 view_of_cosine(float mu) { return vec3(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu); }
+
+}  // namespace
+
+double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
+  const vec3 v = view_of_cosine(mu);
+  return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
+    // The density of l: D(h) cos_h / (4 v.h) (Walter et al. 2007, eq. 14), with D from h's
+    // components as the evaluation computes it (for narrow lobes cos_h rounds to 1).
+    double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
+    if (!(pdf > 0.0)) return 0.0;
+    return double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf;
+  });
+}
+
 double height_correlated_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
-  const vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+  const vec3 v = view_of_cosine(mu);
   const double lambda_v = double(k::lamina_smith_lambda(distribution, v, m));
-  double sum = 0.0;
-  for (int a = 0; a < n; ++a) {
-    for (int b = 0; b < n; ++b) {
-      vec2 u((float(a) + 0.5f) / float(n), (float(b) + 0.5f) / float(n));
-      vec3 h = k::sample_microfacet_normal(distribution, m, u);
-      float v_dot_h = glm::dot(v, h);
-      if (v_dot_h <= 0.0f) continue;
-      vec3 l = 2.0f * v_dot_h * h - v;
-      if (l.z <= 0.0f) continue;
-      l = glm::normalize(l);
-      // f cos_l / pdf with pdf = D cos_h / (4 v.h): F G2 v.h / (cos_v cos_h).
-      const double g2 = 1.0 / (1.0 + lambda_v + double(k::lamina_smith_lambda(distribution, l, m)));
-      const double f = double(k::lamina_fresnel_dielectric(fresnel, v_dot_h, eta));
-      sum += f * g2 * double(v_dot_h) / (double(mu) * double(h.z));
-    }
-  }
-  return sum / (double(n) * double(n));
+  return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
+    // f cos_l / pdf with pdf = D cos_h / (4 v.h): F G2 v.h / (cos_v cos_h).
+    const double g2 = 1.0 / (1.0 + lambda_v + double(k::lamina_smith_lambda(distribution, l, m)));
+    const double f = double(k::lamina_fresnel_dielectric(fresnel, v_dot_h, eta));
+    return f * g2 * double(v_dot_h) / (double(mu) * double(h.z));
+  });
 }
 
 double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks,
                                  uint64_t seed) {
   const MicrosurfaceBoundary boundary{eta, distribution, fresnel, m};
-  const vec3 from(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+  const vec3 from = view_of_cosine(mu);
   Pcg32 rng(seed, 0x6d756c7469ull);
   double sum = 0.0;
   for (int w = 0; w < walks; ++w) {

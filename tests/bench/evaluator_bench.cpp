@@ -4,12 +4,12 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/load.h"
+#include "queries.h"
 
 namespace {
 
@@ -34,29 +34,10 @@ lamina::cpu::Evaluator evaluator_from_example(const char* name, const char* mode
   return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], file));
 }
 
-struct Queries {
-  std::vector<glm::vec3> wi, wo;
-  std::vector<glm::vec2> u;
-  std::vector<float> u_lobe;
-  Queries() {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-    auto direction = [&] {
-      float z = std::max(uniform(rng), 0.01f), phi = 6.2831853f * uniform(rng);
-      float s = std::sqrt(1.0f - z * z);
-      return glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
-    };
-    for (size_t i = 0; i < kQueries; ++i) {
-      wi.push_back(direction());
-      wo.push_back(direction());
-      u.emplace_back(uniform(rng), uniform(rng));
-      u_lobe.push_back(uniform(rng));
-    }
-  }
-};
+using lamina::bench::Queries;
 
 const Queries& queries() {
-  static const Queries q;
+  static const Queries q(kQueries);
   return q;
 }
 

@@ -7,13 +7,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <random>
 #include <string>
-#include <vector>
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
 #include "graph/load.h"
+#include "queries.h"
 
 int main(int argc, char** argv) {
   if (argc != 4) {
@@ -29,29 +28,14 @@ int main(int argc, char** argv) {
   try {
     const lamina::Document document = lamina::load(argv[1]);
     const lamina::cpu::Evaluator evaluator(lamina::compile(document, document.materials.at(0).name));
-    // The benchmark's generator: directions with cosines from 0.01 up, and uniform numbers.
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-    auto direction = [&] {
-      float z = std::max(uniform(rng), 0.01f), phi = 6.2831853f * uniform(rng);
-      float s = std::sqrt(1.0f - z * z);
-      return glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
-    };
-    std::vector<glm::vec3> wi, wo;
-    std::vector<glm::vec2> u;
-    std::vector<float> u_lobe;
-    for (long i = 0; i < count; ++i) {
-      wi.push_back(direction());
-      wo.push_back(direction());
-      u.emplace_back(uniform(rng), uniform(rng));
-      u_lobe.push_back(uniform(rng));
-    }
+    const lamina::bench::Queries q{size_t(count)};
     const lamina::ShadingContext ctx;
     double sum = 0.0;  // printed, so that no query can be optimised away
     for (long i = 0; i < count; ++i) {
-      if (query == "eval") sum += double(evaluator.eval(ctx, wi[size_t(i)], wo[size_t(i)]).x);
-      if (query == "eval_pdf") sum += double(evaluator.eval_pdf(ctx, wi[size_t(i)], wo[size_t(i)]).pdf);
-      if (query == "sample") sum += double(evaluator.sample(ctx, wo[size_t(i)], u[size_t(i)], u_lobe[size_t(i)]).pdf);
+      const size_t at = size_t(i);
+      if (query == "eval") sum += double(evaluator.eval(ctx, q.wi[at], q.wo[at]).x);
+      if (query == "eval_pdf") sum += double(evaluator.eval_pdf(ctx, q.wi[at], q.wo[at]).pdf);
+      if (query == "sample") sum += double(evaluator.sample(ctx, q.wo[at], q.u[at], q.u_lobe[at]).pdf);
     }
     std::printf("%.9g\n", sum);
   } catch (const std::exception& e) {
