@@ -52,6 +52,16 @@ double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, flo
   });
 }
 
+double conductor_cone_quadrature(int distribution, float mu, float m, float cone_cosine, int n) {
+  const vec3 v = view_of_cosine(mu);
+  return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
+    if (l.z <= cone_cosine) return 0.0;
+    // D G / (4 mu cos_l) cos_l over the density D cos_h / (4 v.h): G v.h / (mu cos_h).
+    const double g = double(k::g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m));
+    return g * double(v_dot_h) / (double(mu) * double(h.z));
+  });
+}
+
 double height_correlated_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
   const vec3 v = view_of_cosine(mu);
   const double lambda_v = double(k::lamina_smith_lambda(distribution, v, m));
@@ -83,6 +93,14 @@ int dielectric_albedo_table_entry(int combo, int i, int j, int k_) {
   double e = dielectric_albedo_quadrature(distribution, fresnel, k::lamina_albedo_node_cosine(k_, eta),
                                           k::lamina_albedo_node_slope(j), eta, kAlbedoTableStrata);
   return int(std::min(65535.0, std::ceil(std::max(0.0, e) * 65535.0)));
+}
+
+int conductor_cone_table_entry(int combo, int i, int j, int k_) {
+  const float eta = k::lamina_albedo_node_eta(i);
+  const float cone_cosine = eta > 1.0f ? std::sqrt(1.0f - 1.0f / (eta * eta)) : 0.0f;
+  const double c = conductor_cone_quadrature(combo / 2, k::lamina_albedo_node_cosine(k_, 1.0f),
+                                             k::lamina_albedo_node_slope(j), cone_cosine, kAlbedoTableStrata);
+  return int(std::clamp(std::floor(c * 65535.0), 0.0, 65535.0));
 }
 
 int dielectric_multiple_table_entry(int combo, int i, int j, int k_, int single) {
@@ -154,6 +172,7 @@ std::vector<int> dielectric_albedo_table() {
       at[j * k::LAMINA_ALBEDO_COSINES + c] = single;
       at[k::LAMINA_ALBEDO_MULTIPLE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c] =
           dielectric_multiple_table_entry(combo, i, j, c, single);
+      at[k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c] = conductor_cone_table_entry(combo, i, j, c);
     }
   });
   // Every cell's lift, then every node raised by the most its cells ask.
@@ -213,8 +232,8 @@ int dielectric_albedo_bounded_entry(int combo, int i, int j, int c) {
 std::string dielectric_albedo_inc(const std::vector<int>& table) {
   std::string text =
       "// Generated from the kernels by graph/cpu/energy_table.cpp (LAMINA_UPDATE_TABLES=1 lamina_tests\n"
-      "// -tc='the dielectric albedo table*'): energy.glsl's table, a row per cosine run, the runs of E\n"
-      "// and then those of M for each (combination, eta).\n";
+      "// -tc='the dielectric albedo table*'): energy.glsl's table, a row per cosine run, the runs of E,\n"
+      "// then those of M and then those of C for each (combination, eta).\n";
   for (size_t at = 0; at < table.size(); ++at) {
     text += std::to_string(table[at]);
     const bool run_end = (at + 1) % size_t(k::LAMINA_ALBEDO_COSINES) == 0;

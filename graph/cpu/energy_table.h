@@ -23,6 +23,11 @@ double height_correlated_albedo_quadrature(int distribution, int fresnel, float 
 // those that leave above after two events or more. Deterministic for a seed.
 double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks, uint64_t seed);
 
+// The share of a conductor lobe (lamina_conductor_eval with a Fresnel term of 1: D G / (4 cos_l
+// cos_v)) that a view of cosine mu sends into the cone cos_l > cone_cosine, integrated with cos_l, on
+// n x n strata of the distribution's normal sampling. cone_cosine 0 gives the lobe's whole albedo.
+double conductor_cone_quadrature(int distribution, float mu, float m, float cone_cosine, int n);
+
 // The strata per side dielectric_albedo_table uses.
 inline constexpr int kAlbedoTableStrata = 192;
 
@@ -31,7 +36,7 @@ inline constexpr int kAlbedoTableStrata = 192;
 inline constexpr int kMultipleScatteringWalks = 32768;
 
 // The whole table in the kernels' order (albedo_grid.glsl: a row per combination and eta, each of
-// the blocks E and M): E as round(65535 E) rounded up and then raised to bound E between the nodes
+// the blocks E, M and C): E as round(65535 E) rounded up and then raised to bound E between the nodes
 // too (below); M as round(65535 M), at most 65535 - E.
 //
 // Why E is raised: the energy-conserving composition lets 1 - E - M through a boundary whose lobe
@@ -44,6 +49,11 @@ inline constexpr int kMultipleScatteringWalks = 32768;
 // reflects exactly that). M is lowered where E + M would exceed 1.
 std::vector<int> dielectric_albedo_table();
 inline constexpr double kAlbedoBoundMargin = 1.5;
+
+// One entry of the block C (albedo_grid.glsl): the conductor lobe of the combination's distribution
+// inside the exit cone of eta node i (the whole hemisphere where eta <= 1), as round(65535 C)
+// rounded down.
+int conductor_cone_table_entry(int combo, int i, int j, int k);
 
 // One entry of E as the table holds it: the quadrature's, raised as above.
 int dielectric_albedo_bounded_entry(int combo, int i, int j, int k);

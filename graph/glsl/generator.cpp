@@ -243,7 +243,9 @@ class MaterialEmitter final : public OpWriter {
           << at << "n = " << vec3_literal(q.n) << ";\n"
           << at << "k = " << vec3_literal(q.k) << ";\n"
           << at << "normal = " << vec3_literal(q.normal) << ";\n"
-          << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n";
+          << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
+          << at << "trap = " << vec3_literal(q.trap) << ";\n"
+          << at << "forward = " << vec3_literal(q.forward) << ";\n";
       }
       s << "}\n\n";
       return s.str();
@@ -403,6 +405,10 @@ std::string albedo_table(std::span<const Program> programs, Module& module) {
       if (p.model != kernels::LAMINA_MODEL_ENERGY_CONSERVING) continue;
       const kernels::LaminaEntry k = kernel_entry(e, true);
       if (k.kind == kernels::LAMINA_LAYER) used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
+      // A conductor under a layer: the share of its lobe inside the layer's exit cone (block C), read
+      // from the exact-Fresnel combination of its distribution.
+      if (k.kind == kernels::LAMINA_SUBSTRATE && k.model == kernels::LAMINA_SUBSTRATE_CONDUCTOR)
+        used[size_t(kernels::lamina_albedo_combo(k.distribution, 0))] = true;
     }
   TableBinding table;
   table.name = "lamina_dielectric_albedo_table";

@@ -114,3 +114,21 @@ LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, float mu, 
   multiple = lamina_albedo_interpolate(p, LAMINA_ALBEDO_MULTIPLE_COLUMN);
   return min(lamina_albedo_interpolate(p, 0) + multiple, 1.0f);
 }
+
+// The share of a conductor lobe of the given distribution and slope m, with a Fresnel term of 1,
+// that a direction of cosine mu reflects inside the exit cone of a boundary of relative index eta
+// above it (cos > sqrt(1 - 1 / eta^2); the whole hemisphere where eta <= 1): the table's block C,
+// round(65535 C) rounded down, interpolated like E; whole receives the share over the whole
+// hemisphere (the row eta = 1, the middle node of the eta axis: one grid point serves both). A
+// conductor reflects F(mu) times about as much (F at the mirror direction's V.H, mu itself). 0 for a
+// distribution the module has no table for.
+LAMINA_FN float lamina_conductor_cone_share(int distribution, float mu, float m, float eta, LAMINA_OUT(float) whole) {
+  LaminaAlbedoPoint p = lamina_albedo_point(distribution, 0, mu, m, max(eta, 1.0f));
+  whole = 0.0f;
+  if (p.first < 0) return 0.0f;
+  float inside = lamina_albedo_interpolate(p, LAMINA_ALBEDO_CONE_COLUMN);
+  p.i = (LAMINA_ALBEDO_ETAS - 1) / 2;
+  p.fx = 0.0f;
+  whole = lamina_albedo_interpolate(p, LAMINA_ALBEDO_CONE_COLUMN);
+  return inside;
+}

@@ -234,6 +234,8 @@ struct LaminaParams {
   vec3 k;
   vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
+  vec3 trap;        // energy-conserving model, a layer over a conductor: Gamma (lamina_trap_gain)
+  vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_trapped_light)
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -252,11 +254,17 @@ struct LaminaParams {
 // share of the diffuse light the base sends up that comes back to it after reflecting off the
 // boundary from below (totally outside the exit cone, E(mu_out) + M(mu_out) inside), so c sums every round
 // trip, 1 + K + K^2 + ...: a Lambert base's light bounces under the boundary until it leaves or is
-// absorbed, which is most of the energy of a white base under a clear coat. Light the specular
-// part s sends into the boundary from below is not followed further (it is lost, never created).
-// Every factor is symmetric in l and v, so the sum is reciprocal; each step passes on at most the
-// energy it received (the boundary reflects at most E + M = 1 - T, t <= 1, and a base's diffuse
-// reflectance is at most 1), so no stack reflects more than it receives.
+// absorbed, which is most of the energy of a white base under a clear coat. Over a conductor, the
+// light the metal sends back into the boundary is followed too (lamina_trapped_light): its echo
+// inside the exit cone raises the carry by g (g(l, v) = min(g(l'), g(v'))), and what total internal
+// reflection traps outside the cone leaves by the layer's forward part (lamina_forward_part), added
+// to s:
+//   s(l, v) = ... T(l) t(l') T(v) t(v') / eta^2 s_B(l', v') g(l, v) + c_f u_f(l) u_f(v) a(l, v).
+// Light the specular part of any other base sends into the boundary from below is not followed
+// (it is lost, never created). Every factor is symmetric in l and v, so the sum is reciprocal; each
+// step passes on at most the energy it received (the boundary reflects at most E + M = 1 - T, t <= 1,
+// a base's diffuse reflectance is at most 1, and a metal's echo, trapped light and first exit add
+// up to at most what it reflects), so no stack reflects more than it receives.
 
 // The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
 // refract_down computes it; 0 when it cannot enter.
@@ -270,15 +278,106 @@ LAMINA_FN float lamina_cosine_below(float mu, float eta) {
 // What passes one way through a layer for a direction of cosine mu above it whose refracted cosine
 // is mu_below (<= 0: it cannot enter): T(mu) t(mu_below), T = 1 - E - M what the boundary lets
 // through (energy.glsl). gain receives M(mu) / E(mu), by how much the boundary's multiple scattering
-// raises its single-scattering lobe at mu (0 where E = 0).
+// raises its single-scattering lobe at mu (0 where E = 0); reflected receives E(mu) + M(mu), which is
+// also what the boundary reflects back down of light reaching it from below at mu_below.
 LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below,
-                                    LAMINA_OUT(float) gain) {
+                                    LAMINA_OUT(float) gain, LAMINA_OUT(float) reflected) {
   float multiple = 0.0f;
-  float reflected = lamina_boundary_energy(e.distribution, e.fresnel, mu, p.m, p.eta, multiple);
+  reflected = lamina_boundary_energy(e.distribution, e.fresnel, mu, p.m, p.eta, multiple);
   float single = reflected - multiple;
   gain = single > 0.0f ? multiple / single : 0.0f;
   if (mu_below <= 0.0f) return vec3(0.0f);
   return (1.0f - reflected) * one_way_absorption(p.absorption, p.thickness, mu_below);
+}
+
+// Whether layer i lies on a conductor (the light its base traps: lamina_trapped_light).
+LAMINA_FN bool lamina_on_conductor(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK], int i) {
+  LaminaEntry base = entries[max(entries[i].first, 0)];
+  return entries[i].kind == LAMINA_LAYER && base.kind == LAMINA_SUBSTRATE && base.model == LAMINA_SUBSTRATE_CONDUCTOR;
+}
+
+// What a conductor base reflects of light arriving at cosine mu under layer i: a_in, inside the
+// boundary's exit cone, and a_all, over the whole hemisphere: F(mu) times the shares of its lobe
+// (lamina_conductor_cone_share).
+LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                          LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu,
+                                          LAMINA_OUT(vec3) a_all) {
+  int b = max(entries[i].first, 0);
+  vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
+  float whole = 0.0f;
+  float inside = lamina_conductor_cone_share(entries[b].distribution, mu, params[b].m, params[i].eta, whole);
+  a_all = f * whole;
+  return f * inside;
+}
+
+// The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
+// boundary, whose reflection back down there (E + M at the outer cosine) is `reflected`; 0 for any
+// other base, and echo 1. Of what the metal reflects from there, a_in stays inside the exit cone, and
+// what of it leaves at once is the specular part's carry. What the boundary reflects back down
+// returns to the metal, which sends a_in t^2 E of it into the cone again each time: an echo near the
+// specular direction that multiplies the carry by echo = 1 / (1 - a_in t^2 E) (for smooth layers
+// exactly the series of two parallel mirrors). The rest, a_out = a_all - a_in of every return, goes
+// outside the cone, where the boundary reflects all of it back (total internal reflection); of that
+// light a share Gamma (LaminaParams.trap, lamina_trap_gain) leaves in the end, after travelling on
+// between metal and boundary. Returned: X = a_out echo Gamma.
+LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_below,
+                                    float reflected, LAMINA_OUT(vec3) echo) {
+  echo = vec3(1.0f);
+  if (!lamina_on_conductor(entries, i) || mu_below <= 0.0f) return vec3(0.0f);
+  vec3 a_all = vec3(0.0f);
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all);
+  vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_below);
+  echo = 1.0f / max(vec3(1.0f) - a_in * t * t * reflected, vec3(1.0e-6f));
+  return max(a_all - a_in, vec3(0.0f)) * echo * params[i].trap;
+}
+
+// The trapped light's way out, the forward part of layer i over a conductor:
+//   c u(l) u(v) a(l, v),   u(w) = T(w) t(w') X(w'),   c = 1 / N,
+// N the integral of u cos over the hemisphere (lamina_forward_coefficient). Trapped light travels on
+// between metal and boundary away from the light, keeping its azimuth, and leaves where the metal's
+// lobe spreads it into the cone, near the cone's edge: the reference solver shows it forward and
+// almost none on the side of the light (a separable lobe c u(l) u(v), tried first, put 30 times the
+// reference's light there). So a(l, v) = 1 - cos(phi_l - phi_v) s(l) s(v), s(w) = min(sin w /
+// LAMINA_FORWARD_SINE, 1): 0 toward the light and 2 away from it for directions more than 11.5
+// degrees from the normal, 1 where either is normal, where the azimuth means nothing. Its mean over
+// either azimuth is 1, so the part reflects exactly u(l) from l, like the separable lobe (Kulla and
+// Conty 2017's form), and it is symmetric in l and v. (The sine's own weight, a = 1 - l.xy . v.xy,
+// also keeps the mean but left half the separable lobe's light toward the light at 30 degrees.)
+const float LAMINA_FORWARD_SINE = 0.2f;
+LAMINA_FN vec3 lamina_forward_part(vec3 u_l, vec3 u_v, vec3 coefficient, vec3 l, vec3 v) {
+  float s_l = max(sqrt(l.x * l.x + l.y * l.y), LAMINA_FORWARD_SINE);
+  float s_v = max(sqrt(v.x * v.x + v.y * v.y), LAMINA_FORWARD_SINE);
+  return coefficient * u_l * u_v * (1.0f - (l.x * v.x + l.y * v.y) / (s_l * s_v));
+}
+
+// Gamma of layer i over a conductor: the share of the light trapped outside its exit cone that
+// leaves, followed as one stream. Each time it crosses the medium and comes back (t(mu_o)^2, at the
+// mean cosine mu_o = 2 mu_c / 3 of light spread evenly in projected solid angle outside the cone's
+// edge mu_c), and the metal reflects a_in(mu_o) of it into the cone, where it leaves with the
+// boundary's transmittance at the middle of the cone's cosines or comes back; a_out(mu_o) stays
+// trapped. Gamma = t_o^2 p / (1 - q), the series of every return, p = a_in t T and
+// q = a_out t_o^2 + a_in t^2 (1 - T); p + q <= a_all <= 1, so it never exceeds 1. 0 where the boundary
+// has no total reflection (eta <= 1) or the base is not a conductor.
+LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  float eta = params[i].eta;
+  if (!lamina_on_conductor(entries, i) || eta <= 1.0f) return vec3(0.0f);
+  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
+  float mu_o = 2.0f * mu_edge / 3.0f;
+  vec3 a_all = vec3(0.0f);
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
+  vec3 a_out = max(a_all - a_in, vec3(0.0f));
+  vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
+  float mu_c = 0.5f * (1.0f + mu_edge);
+  float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
+  float multiple = 0.0f;
+  float reflected = lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, mu_c_out, params[i].m, eta,
+                                           multiple);
+  vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
+  vec3 p = a_in * t_c * (1.0f - reflected);
+  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * reflected;
+  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
 }
 
 // u(mu) of the entry `start`: the passages down the chain of layers to its diffuse substrate.
@@ -293,7 +392,8 @@ LAMINA_FN vec3 lamina_diffuse_profile(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMIN
     if (walking) {
       float below = lamina_cosine_below(c, params[j].eta);
       float gain = 0.0f;
-      u = u * lamina_layer_passage(entries[j], params[j], c, below, gain);
+      float reflected = 0.0f;
+      u = u * lamina_layer_passage(entries[j], params[j], c, below, gain, reflected);
       c = below;
       j = entries[j].first;
     }
@@ -354,6 +454,28 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   return c_base * inv_eta2 / max(vec3(1.0f) - k, vec3(1.0e-6f));
 }
 
+// c of layer i's forward part (lamina_forward_part): 1 / N, N = 2 pi int T(mu_out) t X(mu) mu_out
+// dmu_out over the outer cosines (mu dmu = mu_out dmu_out / eta^2, and the solid angle's eta^2), by
+// Gauss-Legendre on two halves of [0, 1]; 0 where nothing is trapped.
+LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                          LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  vec3 sum = vec3(0.0f);
+  for (int q = 0; q < 10; ++q) {
+    int half_index = q / 5;
+    float mu_out = 0.5f * (float(half_index) + lamina_gauss5_node(q - 5 * half_index));
+    float weight = 0.5f * lamina_gauss5_weight(q - 5 * half_index);
+    float below = lamina_cosine_below(mu_out, params[i].eta);
+    float gain = 0.0f;
+    float reflected = 0.0f;
+    vec3 passage = lamina_layer_passage(entries[i], params[i], mu_out, below, gain, reflected);
+    vec3 echo = vec3(1.0f);
+    sum += (weight * mu_out) * passage * lamina_trapped_light(entries, params, i, below, reflected, echo);
+  }
+  vec3 norm = (2.0f * LAMINA_PI) * sum;
+  return vec3(norm.x > 0.0f ? 1.0f / norm.x : 0.0f, norm.y > 0.0f ? 1.0f / norm.y : 0.0f,
+              norm.z > 0.0f ? 1.0f / norm.z : 0.0f);
+}
+
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
 // slope to the entries below it, a mix passes on what it received. clamp_lower: Elek's rule that
 // raises each slope to at least the one above it. model: LAMINA_MODEL_*; for the energy-conserving
@@ -383,6 +505,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.k = vec3(0.0f);
     p.normal = inputs[i].normal;
     p.diffuse = vec3(0.0f);
+    p.trap = vec3(0.0f);
+    p.forward = vec3(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -412,6 +536,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
   if (model != LAMINA_MODEL_ENERGY_CONSERVING) return;
   for (int i = count - 1; i >= 0; --i) {
+    params[i].trap = lamina_trap_gain(entries, params, i);
+    params[i].forward = lamina_forward_coefficient(entries, params, i);
     if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
   }
 }
@@ -519,14 +645,27 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       vec3 vb = refract_down(v, params[i].eta);
       float gain_l = 0.0f;
       float gain_v = 0.0f;
-      u_l[i] = lamina_layer_passage(entries[i], params[i], l.z, lb.z, gain_l);
-      u_v[i] = lamina_layer_passage(entries[i], params[i], v.z, vb.z, gain_v);
+      float reflected_l = 0.0f;
+      float reflected_v = 0.0f;
+      vec3 passage_l = lamina_layer_passage(entries[i], params[i], l.z, lb.z, gain_l, reflected_l);
+      vec3 passage_v = lamina_layer_passage(entries[i], params[i], v.z, vb.z, gain_v, reflected_v);
+      u_l[i] = passage_l;
+      u_v[i] = passage_v;
+      // Over a conductor, the light it traps: its echo raises the carry (symmetric by the min, and
+      // never more than either direction's echo), the rest leaves by the forward part; over any
+      // other base both are nothing.
+      vec3 echo_l = vec3(1.0f);
+      vec3 echo_v = vec3(1.0f);
+      vec3 trapped_l = lamina_trapped_light(entries, params, i, lb.z, reflected_l, echo_l);
+      vec3 trapped_v = lamina_trapped_light(entries, params, i, vb.z, reflected_v, echo_v);
+      vec3 boost = min(echo_l, echo_v);
       s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
                                                params[i].m) *
-                    (1.0f + min(gain_l, gain_v)));
+                    (1.0f + min(gain_l, gain_v))) +
+               lamina_forward_part(passage_l * trapped_l, passage_v * trapped_v, params[i].forward, l, v);
       s[i].l_on = lb;
       s[i].v_on = vb;
-      s[i].carry = u_l[i] * u_v[i] / (params[i].eta * params[i].eta);
+      s[i].carry = passage_l * passage_v * boost / (params[i].eta * params[i].eta);
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;
       s[i].v_on = v;

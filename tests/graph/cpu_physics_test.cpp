@@ -955,18 +955,6 @@ std::optional<Stack> read_stack(const std::string& text) {
   return stack;
 }
 
-// Unpolarised Fresnel reflectance of a boundary to the complex relative index eta (Born and Wolf,
-// sec. 1.5.2 with a complex index, sec. 14.2): cos_t from Snell's law in complex arithmetic, then
-// the mean of |r_s|^2 and |r_p|^2. Real eta below 1 past the critical angle gives |r| = 1.
-double fresnel(double cos_i, std::complex<double> eta) {
-  using C = std::complex<double>;
-  double sin2_i = 1.0 - cos_i * cos_i;
-  C cos_t = std::sqrt(C(1.0) - sin2_i / (eta * eta));
-  C r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-  C r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-  return 0.5 * (std::norm(r_s) + std::norm(r_p));
-}
-
 double fifth(double x) { return x * x * x * x * x; }
 
 // A dielectric boundary of relative index eta under the node's `fresnel`: exact; Schlick 1994
@@ -975,7 +963,7 @@ double fifth(double x) { return x * x * x * x * x; }
 // on the rarer side: from the denser side (eta < 1) the refracted one, and total internal
 // reflection gives 1 (de Greve 2006); no boundary (eta = 1) reflects nothing.
 double fresnel_dielectric(double cos_i, double eta, const std::string& mode) {
-  if (mode == "exact") return fresnel(cos_i, eta);
+  if (mode == "exact") return test::fresnel_reference(cos_i, eta);
   if (eta == 1.0) return 0.0;
   double c = cos_i;
   if (eta < 1.0) {
@@ -994,9 +982,9 @@ double fresnel_dielectric(double cos_i, double eta, const std::string& mode) {
 // A conductor of relative index n + ik: exact; Schlick from the exact reflectance at normal
 // incidence; Lazanyi and Szirmay-Kalos as Elek App. B codes it.
 double fresnel_conductor(double cos_i, double n, double k, const std::string& mode) {
-  if (mode == "exact") return fresnel(cos_i, std::complex<double>(n, k));
+  if (mode == "exact") return test::fresnel_reference(cos_i, std::complex<double>(n, k));
   if (mode == "schlick") {
-    double f0 = fresnel(1.0, std::complex<double>(n, k));
+    double f0 = test::fresnel_reference(1.0, std::complex<double>(n, k));
     return f0 + (1.0 - f0) * fifth(1.0 - cos_i);
   }
   REQUIRE(mode == "lazanyi");

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -46,6 +47,18 @@ inline double fresnel_reference(double cos_i, double eta) {
   double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
   double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
   return 0.5 * (rs * rs + rp * rp);
+}
+
+// The same for a boundary to a complex relative index eta (a metal; Born and Wolf sec. 14.2): cos_t
+// from Snell's law in complex arithmetic, then the mean of |r_s|^2 and |r_p|^2. Real eta below 1 past
+// the critical angle gives |r| = 1.
+inline double fresnel_reference(double cos_i, std::complex<double> eta) {
+  using C = std::complex<double>;
+  double sin2_i = 1.0 - cos_i * cos_i;
+  C cos_t = std::sqrt(C(1.0) - sin2_i / (eta * eta));
+  C r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  C r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  return 0.5 * (std::norm(r_s) + std::norm(r_p));
 }
 
 inline double radians(double degrees) { return degrees * kPi / 180.0; }

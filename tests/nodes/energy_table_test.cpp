@@ -36,6 +36,23 @@ constexpr double kAboveTolerance = 0.08;
 constexpr double kBelowToleranceNearOne = 0.1;
 constexpr double kAboveToleranceNearOne = 0.4;
 
+// The integral of f(l) cos_l over the directions l above the cosine `cone` (0: the hemisphere) by the
+// midpoint rule in (cos_l, phi) on a fine grid: independent of the normal sampling the table uses.
+template <typename F>
+double plain_integral(F f, double cone = 0.0) {
+  const int n = 600;
+  double sum = 0.0;
+  for (int a = 0; a < n; ++a) {
+    for (int b = 0; b < 2 * n; ++b) {
+      double cos_l = (a + 0.5) / n, phi = M_PI * (b + 0.5) / n;
+      if (cos_l <= cone) continue;
+      double sin_l = std::sqrt(1.0 - cos_l * cos_l);
+      sum += f(vec3(float(sin_l * std::cos(phi)), float(sin_l * std::sin(phi)), float(cos_l))) * cos_l;
+    }
+  }
+  return sum * (1.0 / n) * (M_PI / n);
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -73,6 +90,8 @@ TEST_CASE(
         65535.0 * std::sqrt(std::max(double(expected), 1.0) / 65535.0 / lamina::cpu::kMultipleScatteringWalks);
     CHECK(std::abs(multiple - expected) <= 2.0 + 6.0 * noise);
     CHECK(single + multiple <= 65535);
+    const int cone = int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c, row));
+    CHECK(std::abs(cone - lamina::cpu::conductor_cone_table_entry(combo, i, j, c)) <= 2);
   }
 }
 
@@ -142,29 +161,51 @@ TEST_CASE(
 }
 
 TEST_CASE("the albedo quadrature agrees with a plain integration over the hemisphere") {
-  // Midpoint rule in (cos_l, phi) on a fine grid: independent of the normal sampling the table uses.
   for (int distribution = 0; distribution < 3; ++distribution) {
     for (auto [mu_, m_, eta_] :
          {std::tuple{0.8f, 0.4f, 1.5f}, std::tuple{0.3f, 0.7f, 1.33f}, std::tuple{0.6f, 0.5f, 0.7f}}) {
       const float mu = mu_, m = m_, eta = eta_;  // clang 14 cannot capture a structured binding
       const vec3 v(std::sqrt(1.0f - mu * mu), 0.0f, mu);
-      const int n = 600;
-      double sum = 0.0;
-      for (int a = 0; a < n; ++a) {
-        for (int b = 0; b < 2 * n; ++b) {
-          double cos_l = (a + 0.5) / n, phi = M_PI * (b + 0.5) / n;
-          double sin_l = std::sqrt(1.0 - cos_l * cos_l);
-          vec3 l(float(sin_l * std::cos(phi)), float(sin_l * std::sin(phi)), float(cos_l));
-          sum += double(k::lamina_boundary_reflection(l, v, eta, distribution, 0, m)) * cos_l;
-        }
-      }
-      double plain = sum * (1.0 / n) * (M_PI / n);
+      const double plain =
+          plain_integral([&](vec3 l) { return double(k::lamina_boundary_reflection(l, v, eta, distribution, 0, m)); });
       CAPTURE(distribution);
       CAPTURE(mu);
       CAPTURE(m);
       CAPTURE(eta);
       CHECK(lamina::cpu::dielectric_albedo_quadrature(distribution, 0, mu, m, eta, 192) ==
             doctest::Approx(plain).epsilon(2.0e-3));
+    }
+  }
+}
+
+TEST_CASE("the conductor cone quadrature agrees with a plain integration over the cone and the hemisphere") {
+  // The conductor lobe with a Fresnel term of 1, over the exit cone of a boundary of index eta and
+  // over the whole hemisphere (eta 1).
+  for (int distribution = 0; distribution < 3; ++distribution) {
+    for (auto [mu_, m_, eta_] :
+         {std::tuple{0.8f, 0.3f, 1.5f}, std::tuple{0.5f, 0.6f, 1.7f}, std::tuple{0.6f, 0.4f, 1.0f}}) {
+      const float mu = mu_, m = m_, eta = eta_;
+      const float cone = eta > 1.0f ? std::sqrt(1.0f - 1.0f / (eta * eta)) : 0.0f;
+      const vec3 v(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+      // Schlick's term from F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2) = 1 - 4e-8 (n 1, k 10^4) is 1 at
+      // every angle, to float precision.
+      const double plain = plain_integral(
+          [&](vec3 l) {
+            return double(k::lamina_conductor_eval(l, v, vec3(1.0f), vec3(1.0e4f), distribution, 1, m).x);
+          },
+          cone);
+      CAPTURE(distribution);
+      CAPTURE(mu);
+      CAPTURE(m);
+      CAPTURE(eta);
+      CHECK(lamina::cpu::conductor_cone_quadrature(distribution, mu, m, cone, 192) ==
+            doctest::Approx(plain).epsilon(3.0e-3));
+      // And the table, read as the composition reads it, within its interpolation.
+      float whole = 0.0f, unused = 0.0f;
+      CHECK(double(k::lamina_conductor_cone_share(distribution, mu, m, eta, whole)) ==
+            doctest::Approx(plain).epsilon(0.03));
+      // The whole hemisphere's share is the row eta = 1's.
+      CHECK(whole == k::lamina_conductor_cone_share(distribution, mu, m, 1.0f, unused));
     }
   }
 }

@@ -126,7 +126,13 @@ void main() {
   f += lamina_boundary_energy(2, 1, c, m, 1.5f, multiple) + multiple;
   f += lamina_albedo_interpolate(lamina_albedo_point(0, 0, c, m, 0.7f), LAMINA_ALBEDO_MULTIPLE_COLUMN);
   s += one_way_absorption(vec3(0.1f), 0.5f, c) + lamina_diffuse_profile(entries, params, 0, c);
-  s += lamina_layer_passage(entries[0], params[0], c, 0.5f, multiple);
+  float reflected = 0.0f;
+  s += lamina_layer_passage(entries[0], params[0], c, 0.5f, multiple, reflected) + reflected;
+  vec3 echo = vec3(0.0f);
+  s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo) + echo + lamina_trap_gain(entries, params, 0);
+  s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
+  float whole = 0.0f;
+  f += lamina_conductor_cone_share(1, c, m, 1.5f, whole) + whole;
   s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
