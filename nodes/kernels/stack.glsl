@@ -235,7 +235,7 @@ struct LaminaParams {
   vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
   vec3 trap;        // energy-conserving model, a layer over a conductor: Gamma (lamina_trap_gain)
-  vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_trapped_light)
+  vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -264,7 +264,9 @@ struct LaminaParams {
 // (it is lost, never created). Every factor is symmetric in l and v, so the sum is reciprocal; each
 // step passes on at most the energy it received (the boundary reflects at most E + M = 1 - T, t <= 1,
 // a base's diffuse reflectance is at most 1, and a metal's echo, trapped light and first exit add
-// up to at most what it reflects), so no stack reflects more than it receives.
+// up to at most a_all, what it reflects with its Fresnel term at the arriving direction's cosine:
+// an estimate, not a bound, which the strict furnace test checks), so no stack reflects more than
+// it receives.
 
 // The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
 // refract_down computes it; 0 when it cannot enter.
