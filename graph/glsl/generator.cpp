@@ -405,9 +405,10 @@ std::string albedo_table(std::span<const Program> programs, Module& module) {
       if (p.model != kernels::LAMINA_MODEL_ENERGY_CONSERVING) continue;
       const kernels::LaminaEntry k = kernel_entry(e, true);
       if (k.kind == kernels::LAMINA_LAYER) used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
-      // A conductor under a layer: the share of its lobe inside the layer's exit cone (block C), read
-      // from the exact-Fresnel combination of its distribution.
-      if (k.kind == kernels::LAMINA_SUBSTRATE && k.model == kernels::LAMINA_SUBSTRATE_CONDUCTOR)
+      // A conductor under a layer (lamina_on_conductor): the share of its lobe inside the layer's exit
+      // cone (block C), read from the exact-Fresnel combination of its distribution.
+      const bool under_layer = e.parent >= 0 && p.stack[size_t(e.parent)].kind == kernels::LAMINA_LAYER;
+      if (under_layer && k.kind == kernels::LAMINA_SUBSTRATE && k.model == kernels::LAMINA_SUBSTRATE_CONDUCTOR)
         used[size_t(kernels::lamina_albedo_combo(k.distribution, 0))] = true;
     }
   TableBinding table;

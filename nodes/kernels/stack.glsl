@@ -360,11 +360,11 @@ LAMINA_FN vec3 lamina_forward_part(vec3 u_l, vec3 u_v, vec3 coefficient, vec3 l,
 // boundary's transmittance at the middle of the cone's cosines or comes back; a_out(mu_o) stays
 // trapped. Gamma = t_o^2 p / (1 - q), the series of every return, p = a_in t T and
 // q = a_out t_o^2 + a_in t^2 (1 - T); p + q <= a_all <= 1, so it never exceeds 1. 0 where the boundary
-// has no total reflection (eta <= 1) or the base is not a conductor.
+// has no total reflection (eta <= 1).
 LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float eta = params[i].eta;
-  if (!lamina_on_conductor(entries, i) || eta <= 1.0f) return vec3(0.0f);
+  if (eta <= 1.0f) return vec3(0.0f);
   float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
   float mu_o = 2.0f * mu_edge / 3.0f;
   vec3 a_all = vec3(0.0f);
@@ -456,7 +456,7 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   return c_base * inv_eta2 / max(vec3(1.0f) - k, vec3(1.0e-6f));
 }
 
-// c of layer i's forward part (lamina_forward_part): 1 / N, N = 2 pi int T(mu_out) t X(mu) mu_out
+// c of the forward part of layer i over a conductor (lamina_forward_part): 1 / N, N = 2 pi int T(mu_out) t X(mu) mu_out
 // dmu_out over the outer cosines (mu dmu = mu_out dmu_out / eta^2, and the solid angle's eta^2), by
 // Gauss-Legendre on two halves of [0, 1]; 0 where nothing is trapped.
 LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
@@ -538,8 +538,11 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
   if (model != LAMINA_MODEL_ENERGY_CONSERVING) return;
   for (int i = count - 1; i >= 0; --i) {
-    params[i].trap = lamina_trap_gain(entries, params, i);
-    params[i].forward = lamina_forward_coefficient(entries, params, i);
+    // Only a layer over a conductor traps light: its quadrature is not spent on the others.
+    if (lamina_on_conductor(entries, i)) {
+      params[i].trap = lamina_trap_gain(entries, params, i);
+      params[i].forward = lamina_forward_coefficient(entries, params, i);
+    }
     if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
   }
 }
