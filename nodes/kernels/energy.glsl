@@ -58,14 +58,24 @@ struct LaminaAlbedoPoint {
   float fz;
 };
 
-// Every argument clamped to the grid.
-LAMINA_FN LaminaAlbedoPoint lamina_albedo_point(int distribution, int fresnel, float mu, float m, float eta) {
-  LaminaAlbedoPoint p;
-  p.first = LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[lamina_albedo_combo(distribution, fresnel)];
+// The grid coordinates (x, y) of a boundary's relative index eta and slope m, clamped to the grid.
+// A shading point fixes them for each of its boundaries, so the composition computes them once per
+// entry (LaminaParams.grid) and only the cosine's at each lookup.
+LAMINA_FN vec2 lamina_albedo_grid_xy(float m, float eta) {
   float s = 0.5f * log2(clamp(eta, 0.25f, 4.0f));
   float x = clamp((sign(s) * sqrt(abs(s)) + 1.0f) * 0.5f * float(LAMINA_ALBEDO_ETAS - 1), 0.0f,
                   float(LAMINA_ALBEDO_ETAS - 1));
   float y = pow(clamp(m, 0.0f, 1.0f), 1.0f / 3.0f) * float(LAMINA_ALBEDO_SLOPES - 1);
+  return vec2(x, y);
+}
+
+// The grid point of a view of cosine mu on a boundary of grid coordinates xy
+// (lamina_albedo_grid_xy of its slope and of eta), every argument clamped to the grid.
+LAMINA_FN LaminaAlbedoPoint lamina_albedo_point_at(int distribution, int fresnel, vec2 xy, float mu, float eta) {
+  LaminaAlbedoPoint p;
+  p.first = LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[lamina_albedo_combo(distribution, fresnel)];
+  float x = xy.x;
+  float y = xy.y;
   float z = sqrt(lamina_albedo_axis_cosine(mu, clamp(eta, 0.25f, 4.0f))) * float(LAMINA_ALBEDO_COSINES - 1);
   p.i = min(int(x), LAMINA_ALBEDO_ETAS - 2);
   p.j = min(int(y), LAMINA_ALBEDO_SLOPES - 2);
@@ -74,6 +84,10 @@ LAMINA_FN LaminaAlbedoPoint lamina_albedo_point(int distribution, int fresnel, f
   p.fy = y - float(p.j);
   p.fz = z - float(p.k);
   return p;
+}
+
+LAMINA_FN LaminaAlbedoPoint lamina_albedo_point(int distribution, int fresnel, float mu, float m, float eta) {
+  return lamina_albedo_point_at(distribution, fresnel, lamina_albedo_grid_xy(m, eta), mu, eta);
 }
 
 // The entry at eta node i, slope node j, cosine node k of the block starting at column `block` of
@@ -104,11 +118,12 @@ LAMINA_FN float lamina_dielectric_albedo(int distribution, int fresnel, float mu
   return lamina_albedo_interpolate(p, 0);
 }
 
-// All the energy a boundary reflects at mu, E(mu) + M(mu); multiple receives M(mu) alone. (The
-// table keeps E + M <= 1 at every node, so interpolated they stay within 1.)
-LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, float mu, float m, float eta,
+// All the energy a boundary of grid coordinates xy (lamina_albedo_grid_xy of its slope and eta)
+// reflects at mu, E(mu) + M(mu); multiple receives M(mu) alone. (The table keeps E + M <= 1 at every
+// node, so interpolated they stay within 1.)
+LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, vec2 xy, float mu, float eta,
                                        LAMINA_OUT(float) multiple) {
-  LaminaAlbedoPoint p = lamina_albedo_point(distribution, fresnel, mu, m, eta);
+  LaminaAlbedoPoint p = lamina_albedo_point_at(distribution, fresnel, xy, mu, eta);
   multiple = 0.0f;
   if (p.first < 0) return 1.0f;
   multiple = lamina_albedo_interpolate(p, LAMINA_ALBEDO_MULTIPLE_COLUMN);
@@ -117,13 +132,14 @@ LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, float mu, 
 
 // The share of a conductor lobe of the given distribution and slope m, with a Fresnel term of 1,
 // that a direction of cosine mu reflects inside the exit cone of a boundary of relative index eta
-// above it (cos > sqrt(1 - 1 / eta^2); the whole hemisphere where eta <= 1): the table's block C,
+// above it (cos > sqrt(1 - 1 / eta^2); the whole hemisphere where eta <= 1), xy being
+// lamina_albedo_grid_xy(m, max(eta, 1)): the table's block C,
 // round(65535 C) rounded down, interpolated like E; whole receives the share over the whole
 // hemisphere (the row eta = 1, the middle node of the eta axis: one grid point serves both). A
 // conductor reflects F(mu) times about as much (F at the mirror direction's V.H, mu itself). 0 for a
 // distribution the module has no table for.
-LAMINA_FN float lamina_conductor_cone_share(int distribution, float mu, float m, float eta, LAMINA_OUT(float) whole) {
-  LaminaAlbedoPoint p = lamina_albedo_point(distribution, 0, mu, m, max(eta, 1.0f));
+LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, float mu, LAMINA_OUT(float) whole) {
+  LaminaAlbedoPoint p = lamina_albedo_point_at(distribution, 0, xy, mu, 1.0f);
   whole = 0.0f;
   if (p.first < 0) return 0.0f;
   float inside = lamina_albedo_interpolate(p, LAMINA_ALBEDO_CONE_COLUMN);

@@ -236,6 +236,8 @@ struct LaminaParams {
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
   vec3 trap;        // energy-conserving model, a layer over a conductor: Gamma (lamina_trap_gain)
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
+  vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
+  vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -285,7 +287,7 @@ LAMINA_FN float lamina_cosine_below(float mu, float eta) {
 LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below,
                                     LAMINA_OUT(float) gain, LAMINA_OUT(float) reflected) {
   float multiple = 0.0f;
-  reflected = lamina_boundary_energy(e.distribution, e.fresnel, mu, p.m, p.eta, multiple);
+  reflected = lamina_boundary_energy(e.distribution, e.fresnel, p.grid, mu, p.eta, multiple);
   float single = reflected - multiple;
   gain = single > 0.0f ? multiple / single : 0.0f;
   if (mu_below <= 0.0f) return vec3(0.0f);
@@ -307,7 +309,7 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   int b = max(entries[i].first, 0);
   vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
   float whole = 0.0f;
-  float inside = lamina_conductor_cone_share(entries[b].distribution, mu, params[b].m, params[i].eta, whole);
+  float inside = lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, mu, whole);
   a_all = f * whole;
   return f * inside;
 }
@@ -374,8 +376,8 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
   float mu_c = 0.5f * (1.0f + mu_edge);
   float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
   float multiple = 0.0f;
-  float reflected = lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, mu_c_out, params[i].m, eta,
-                                           multiple);
+  float reflected =
+      lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_c_out, eta, multiple);
   vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
   vec3 p = a_in * t_c * (1.0f - reflected);
   vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * reflected;
@@ -444,7 +446,7 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     float mu_in = lamina_safe_sqrt(1.0f - (1.0f - mu_out * mu_out) * inv_eta2);
     float multiple = 0.0f;
     float reflected =
-        lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, mu_out, params[i].m, eta, multiple);
+        lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_out, eta, multiple);
     u = lamina_diffuse_profile(entries, params, base, mu_in);
     t = one_way_absorption(params[i].absorption, params[i].thickness, mu_in);
     float span = (1.0f - mu_out_least) * inv_eta2;
@@ -509,6 +511,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.diffuse = vec3(0.0f);
     p.trap = vec3(0.0f);
     p.forward = vec3(0.0f);
+    p.grid = vec2(0.0f);
+    p.cone_grid = vec2(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -538,8 +542,10 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
   if (model != LAMINA_MODEL_ENERGY_CONSERVING) return;
   for (int i = count - 1; i >= 0; --i) {
+    if (entries[i].kind == LAMINA_LAYER) params[i].grid = lamina_albedo_grid_xy(params[i].m, params[i].eta);
     // Only a layer over a conductor traps light: its quadrature is not spent on the others.
     if (lamina_on_conductor(entries, i)) {
+      params[i].cone_grid = lamina_albedo_grid_xy(params[entries[i].first].m, max(params[i].eta, 1.0f));
       params[i].trap = lamina_trap_gain(entries, params, i);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }

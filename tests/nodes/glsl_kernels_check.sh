@@ -123,7 +123,7 @@ void main() {
   f += lamina_albedo_node_cosine(1, 0.7f) + lamina_albedo_axis_cosine(c, 0.7f) + oren_nayar_uniform(0.3f);
   f += lamina_albedo_grid_eta(0.5f) + lamina_albedo_grid_slope(0.5f) + lamina_albedo_grid_cosine(0.5f, 0.7f);
   float multiple = 0.0f;
-  f += lamina_boundary_energy(2, 1, c, m, 1.5f, multiple) + multiple;
+  f += lamina_boundary_energy(2, 1, lamina_albedo_grid_xy(m, 1.5f), c, 1.5f, multiple) + multiple;
   f += lamina_albedo_interpolate(lamina_albedo_point(0, 0, c, m, 0.7f), LAMINA_ALBEDO_MULTIPLE_COLUMN);
   s += one_way_absorption(vec3(0.1f), 0.5f, c) + lamina_diffuse_profile(entries, params, 0, c);
   float reflected = 0.0f;
@@ -132,7 +132,8 @@ void main() {
   s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo) + echo + lamina_trap_gain(entries, params, 0);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
   float whole = 0.0f;
-  f += lamina_conductor_cone_share(1, c, m, 1.5f, whole) + whole;
+  f += lamina_conductor_cone_share(1, lamina_albedo_grid_xy(m, 1.5f), c, whole) + whole;
+  f += lamina_albedo_point_at(0, 0, vec2(1.0f), c, 0.7f).fx;
   s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
