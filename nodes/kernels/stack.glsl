@@ -244,7 +244,7 @@ struct LaminaParams {
 // Each entry's BRDF is split in two parts: f(l, v) = s(l, v) + c u(l) u(v), where the second, the
 // diffuse part, is light that has lost its direction in a diffuse substrate, and c is a constant of
 // the entry (LaminaParams.diffuse). A diffuse substrate has u = 1 and c = albedo / pi (Oren-Nayar:
-// its direction-free C1 share) and s = f - c; a conductor only s; a mix only s (both its stacks
+// its mean value, oren_nayar_mean) and s = f - c; a conductor only s; a mix only s (both its stacks
 // whole). A layer of relative index eta over a base B, with T(mu) = 1 - E(mu) - M(mu) the energy its
 // boundary lets through (energy.glsl: E its single-scattering lobe's albedo, M what its microsurface
 // reflects beyond it) and t(mu') = exp(-sigma d / mu') the medium's one-way transmittance:
@@ -263,7 +263,9 @@ struct LaminaParams {
 // to s:
 //   s(l, v) = ... T(l) t(l') T(v) t(v') / eta^2 s_B(l', v') g(l, v) + c_f u_f(l) u_f(v) a(l, v).
 // Light the specular part of any other base sends into the boundary from below is not followed
-// (it is lost, never created). Every factor is symmetric in l and v, so the sum is reciprocal; each
+// (it is lost, never created). An Oren-Nayar base's s has mean 0 (c is its mean value), so the
+// light its direction-dependent terms send there averages out instead of being lost; c as its
+// direction-free C1 share alone lost 8.6% of a white base's light under a clear coat (sugar). Every factor is symmetric in l and v, so the sum is reciprocal; each
 // step passes on at most the energy it received (the boundary reflects at most E + M = 1 - T, t <= 1,
 // a base's diffuse reflectance is at most 1, and a metal's echo, trapped light and first exit add
 // up to at most a_all, what it reflects with its Fresnel term at the arriving direction's cosine:
@@ -534,9 +536,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     } else {
       p.albedo = inputs[i].colour0;
       p.sigma = inputs[i].scalars.x;
-      // A diffuse substrate's direction-free part: Lambert's albedo / pi, Oren-Nayar's C1 share of it.
-      float uniform_share = entries[i].model == LAMINA_SUBSTRATE_OREN_NAYAR ? oren_nayar_uniform(p.sigma) : 1.0f;
-      p.diffuse = p.albedo * (uniform_share * LAMINA_INV_PI);
+      // A diffuse substrate's direction-free part: Lambert's albedo / pi, Oren-Nayar's mean value.
+      p.diffuse = entries[i].model == LAMINA_SUBSTRATE_OREN_NAYAR ? oren_nayar_mean(p.albedo, p.sigma) : lambert(p.albedo);
     }
     params[i] = p;
   }

@@ -512,6 +512,34 @@ TEST_CASE("kernels: oren_nayar with sigma 0 is exactly lambert, and it is symmet
   CHECK(k::oren_nayar(vec3(s, 0.0f, 1e-6f), vec3(-s, 0.0f, 1e-6f), vec3(0.1f), 1.0f) == vec3(0.0f));
 }
 
+TEST_CASE("kernels: oren_nayar_mean is the cosine-weighted mean of oren_nayar over both hemispheres") {
+  // With x = cos^2 for each direction, cos dw = dx dphi / 2, so the mean (1 / pi^2) int int f cos cos
+  // is the plain average of f over x_i, x_o and the azimuth difference: midpoints, in double.
+  const int n = 160, azimuths = 64;
+  for (float sigma : {0.0f, 0.26f, 0.5f, 1.0f, 1.5f}) {
+    const vec3 albedo(1.0f, 0.5f, 0.2f);
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < n; ++i) {
+      const double mu_i = std::sqrt((i + 0.5) / n);
+      const vec3 wi(float(std::sqrt(1.0 - mu_i * mu_i)), 0.0f, float(mu_i));
+      for (int o = 0; o < n; ++o) {
+        const double mu_o = std::sqrt((o + 0.5) / n), s_o = std::sqrt(1.0 - mu_o * mu_o);
+        for (int a = 0; a < azimuths; ++a) {
+          const double phi = 2.0 * kPi * (a + 0.5) / azimuths;
+          const vec3 wo(float(s_o * std::cos(phi)), float(s_o * std::sin(phi)), float(mu_o));
+          sum += glm::dvec3(k::oren_nayar(wi, wo, albedo, sigma));
+        }
+      }
+    }
+    const glm::dvec3 mean = sum / double(n * n * azimuths);
+    const vec3 closed = k::oren_nayar_mean(albedo, sigma);
+    CAPTURE(sigma);
+    for (int c = 0; c < 3; ++c) CHECK(double(closed[c]) == rel(mean[c], 2e-3));
+  }
+  // Lambert's mean is its value.
+  CHECK_VEC3(k::oren_nayar_mean(vec3(0.3f, 0.6f, 0.9f), 0.0f), 0.3 / kPi, 0.6 / kPi, 0.9 / kPi);
+}
+
 TEST_CASE("kernels: sample_cosine is Malley's method and pdf_cosine its density") {
   // u = (0.25, 0.125): r = 0.5, phi = pi/4: (0.5 cos(pi/4), 0.5 sin(pi/4), sqrt(0.75))
   CHECK_VEC3(k::sample_cosine(vec2(0.25f, 0.125f)), 0.5 * std::sqrt(0.5), 0.5 * std::sqrt(0.5), std::sqrt(0.75));
