@@ -86,3 +86,41 @@ LAMINA_FN float lamina_erfc_poly(float x) {
   float t = 1.0f / (1.0f + 0.3275911f * x);
   return t * (0.254829592f + t * (-0.284496736f + t * (1.421413741f + t * (-1.453152027f + t * 1.061405429f))));
 }
+
+// erf(x) for any x: 1 - erfc(|x|) by lamina_erfc_poly, with erf's odd symmetry.
+LAMINA_FN float lamina_erf(float x) {
+  float a = abs(x);
+  float e = 1.0f - lamina_erfc_poly(a) * exp(-a * a);
+  return x < 0.0f ? -e : e;
+}
+
+// The inverse error function on (-1, 1): Giles 2010 ("Approximating the erfinv function", GPU
+// Computing Gems), single-precision form, two polynomials in w = -log((1 - x)(1 + x)), the second
+// in sqrt(w) for the tails (relative error near 1e-7; the test checks it against an inversion of
+// erf in double). Both are evaluated and one selected, without a branch; x is clamped to within
+// 2^-24 of +-1, so the result stays finite (|erfinv| < 3.9).
+LAMINA_FN float lamina_erfinv(float x) {
+  float y = clamp(x, -0.99999994f, 0.99999994f);
+  float w = -log((1.0f - y) * (1.0f + y));
+  float c = w - 2.5f;
+  float central = 2.81022636e-08f;
+  central = 3.43273939e-07f + central * c;
+  central = -3.5233877e-06f + central * c;
+  central = -4.39150654e-06f + central * c;
+  central = 0.00021858087f + central * c;
+  central = -0.00125372503f + central * c;
+  central = -0.00417768164f + central * c;
+  central = 0.246640727f + central * c;
+  central = 1.50140941f + central * c;
+  float t = sqrt(w) - 3.0f;
+  float tail = -0.000200214257f;
+  tail = 0.000100950558f + tail * t;
+  tail = 0.00134934322f + tail * t;
+  tail = -0.00367342844f + tail * t;
+  tail = 0.00573950773f + tail * t;
+  tail = -0.0076224613f + tail * t;
+  tail = 0.00943887047f + tail * t;
+  tail = 1.00167406f + tail * t;
+  tail = 2.83297682f + tail * t;
+  return (w < 5.0f ? central : tail) * y;
+}

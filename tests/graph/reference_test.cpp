@@ -4,9 +4,11 @@
 // against each other and against the laws every BRDF obeys.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <vector>
 
 #include "graph/cpu/microsurface.h"
 #include "graph/cpu/reference.h"
@@ -248,6 +250,109 @@ struct Mean {
 bool agree(const Mean& a, const Mean& b, double scale_a = 1.0, double scale_b = 1.0) {
   const double error = std::hypot(a.error() * scale_a, b.error() * scale_b);
   return std::abs(a.value() * scale_a - b.value() * scale_b) <= 4.5 * error + 1e-6;
+}
+
+TEST_CASE("Beckmann's visible normals are drawn with their density max(0, w.n) D(n) / projected area") {
+  // A chi-square test per case over (theta_n, phi_n) cells: 24 rings up to 5 slopes out and 16
+  // sectors, the expected counts by a midpoint quadrature of lamina_visible_normal_density inside
+  // each cell; w above the horizon and below it down to the cotangent (in the frame stretched to
+  // slope 1) below which the walk stops drawing them.
+  std::mt19937_64 rng(31);
+  const int draws = 200000 / test::kSanitizerDivisor, rings = 24, sectors = 16, sub = 8;
+  const std::vector<double> slopes{0.08, 0.45, 1.0};
+  const std::vector<double> cotangents{40.0, 3.0, 0.5, 0.05, -0.7, -k::LAMINA_BECKMANN_LOWEST_COT};
+  const double significance = test::sidak(0.01, int(slopes.size() * cotangents.size()));
+  for (double m : slopes) {
+    for (double c : cotangents) {
+      const double phi_w = 2.0 * test::kPi * test::uniform(rng);
+      const vec3 w = test::to_float(glm::normalize(dvec3(std::cos(phi_w), std::sin(phi_w), c * m)));
+      const double theta_max = std::min(std::atan(5.0 * m), test::kPi / 2.0);
+      std::vector<double> expected(size_t(rings * sectors), 0.0), observed(expected.size(), 0.0);
+      for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < sectors; ++s)
+          for (int a = 0; a < sub; ++a)
+            for (int b = 0; b < sub; ++b) {
+              const double theta = theta_max * (r + (a + 0.5) / sub) / rings;
+              const double phi = 2.0 * test::kPi * (s + (b + 0.5) / sub) / sectors;
+              const vec3 n = test::to_float(test::spherical(theta, phi));
+              const double cell = std::sin(theta) * (theta_max / (rings * sub)) * (2.0 * test::kPi / (sectors * sub));
+              expected[size_t(r * sectors + s)] += draws * cell * k::lamina_visible_normal_density(0, w, n, float(m));
+            }
+      for (int i = 0; i < draws; ++i) {
+        const glm::vec2 u(float(test::uniform(rng)), float(test::uniform(rng)));
+        const vec3 n = k::lamina_sample_beckmann_visible_normal(w, float(m), u);
+        REQUIRE(std::abs(glm::length(n) - 1.0f) < 1e-5f);
+        REQUIRE(glm::dot(w, n) > -1e-6f);
+        const double theta = std::acos(std::clamp(double(n.z), -1.0, 1.0));
+        double phi = std::atan2(double(n.y), double(n.x));
+        if (phi < 0.0) phi += 2.0 * test::kPi;
+        if (theta >= theta_max) continue;  // the tail beyond 5 slopes: under 1.4e-11 of the normals
+        const int r = std::min(rings - 1, int(theta / theta_max * rings));
+        const int s = std::min(sectors - 1, int(phi / (2.0 * test::kPi) * sectors));
+        observed[size_t(r * sectors + s)] += 1.0;
+      }
+      const test::ChiSquareResult result = test::chi_square(observed, expected, draws, [&](size_t i) {
+        return "ring " + std::to_string(i / sectors) + " sector " + std::to_string(i % sectors);
+      });
+      double total_expected = 0.0;
+      for (double e : expected) total_expected += e;
+      INFO("m " << m << " w.z " << w.z << " (expected counts sum to " << total_expected / draws
+                << " of the draws): chi2 " << result.statistic << " dof " << result.dof << "\n"
+                << result.worst_bins);
+      CHECK(result.p_value >= significance);
+    }
+  }
+}
+
+TEST_CASE("a Beckmann microsurface seen from far below draws visible normals, weighed, and loses nothing") {
+  // Below the lowest cotangent the phase function draws the normals seen from there and weighs
+  // them by the ratio of the densities: every draw keeps the light on average (a facet wi cannot
+  // see would lose it), whichever way the light is then reflected or refracted.
+  std::mt19937_64 rng(37);
+  const int draws = 200000 / test::kSanitizerDivisor;
+  for (float m : {0.08f, 0.45f, 1.0f})
+    for (double c : {-1.6, -2.0, -2.5})  // by -3.5 float cannot tell the area seen from there from 0
+      for (float eta : {1.35f, 1.0f / 1.35f}) {
+        const double phi_w = 2.0 * test::kPi * test::uniform(rng);
+        const vec3 w = test::to_float(glm::normalize(dvec3(std::cos(phi_w), std::sin(phi_w), c * m)));
+        REQUIRE(k::lamina_projected_area(0, w, m) > 0.0f);
+        Mean kept;
+        for (int i = 0; i < draws; ++i) {
+          const vec3 u(float(test::uniform(rng)), float(test::uniform(rng)), float(test::uniform(rng)));
+          float weight = 0.0f;
+          bool refracted = false;
+          k::lamina_phase_sample(w, eta, 0, 0, m, u, weight, refracted);
+          kept.add(weight);
+        }
+        INFO("m " << m << " cot " << c << " eta " << eta << ": " << kept.value() << " +- " << kept.error());
+        CHECK(std::abs(kept.value() - 1.0) <= 4.0 * kept.error() + 1e-4);
+      }
+}
+
+TEST_CASE("lamina_erf and lamina_erfinv agree with erf and with its inverse found in double") {
+  for (int i = -400; i <= 400; ++i) {
+    const double x = i / 100.0;
+    CHECK(std::abs(double(k::lamina_erf(float(x))) - std::erf(x)) <= 3e-7);
+  }
+  // The inverse by Newton's method on std::erf, from y's whole range into its tails.
+  auto inverse = [](double y) {
+    double x = 0.0;
+    for (int i = 0; i < 100; ++i) x -= (std::erf(x) - y) / (2.0 / std::sqrt(test::kPi) * std::exp(-x * x));
+    return x;
+  };
+  std::vector<double> ys;
+  for (int i = -999; i <= 999; ++i) ys.push_back(i / 1000.0);
+  for (double y : {1e-7, 1e-3, 0.9999, 0.99999, 0.999999, 0.9999999}) {
+    ys.push_back(y);
+    ys.push_back(-y);
+  }
+  for (double y : ys) {
+    CAPTURE(y);
+    const double want = inverse(double(float(y)));
+    CHECK(std::abs(double(k::lamina_erfinv(float(y))) - want) <= 3e-6 * std::abs(want));
+  }
+  CHECK(std::isfinite(k::lamina_erfinv(1.0f)));
+  CHECK(std::isfinite(k::lamina_erfinv(-1.0f)));
 }
 
 TEST_CASE("a microsurface's estimate of f integrates to what its walks draw, and is reciprocal") {
