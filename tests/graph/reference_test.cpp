@@ -329,6 +329,24 @@ TEST_CASE("a Beckmann microsurface seen from far below draws visible normals, we
       }
 }
 
+TEST_CASE("light at the microsurface's lowest height finds a finite next height, however little it is masked") {
+  // A walk that meets the surface at the top height and refracts continues at the bottom of the
+  // other side's heights, where C1(h) = 0; going up steeply under a smooth boundary, Lambda is so
+  // small that (1 - u)^(1 / Lambda) underflows.
+  for (int distribution : {0, 1, 2})
+    for (float m : {0.05f, 0.36f, 1.0f})
+      for (float z : {0.3f, 0.704f, 0.99f})
+        for (float u : {0.0f, 0.25f, 0.5f, 0.999f}) {
+          const vec3 w(std::sqrt(1.0f - z * z), 0.0f, z);
+          const float h = k::lamina_next_height(distribution, w, -1.0f, m, u);
+          CAPTURE(distribution);
+          CAPTURE(m);
+          CAPTURE(z);
+          CAPTURE(u);
+          CHECK(std::isfinite(h));
+        }
+}
+
 TEST_CASE("lamina_erf and lamina_erfinv agree with erf and with its inverse found in double") {
   for (int i = -400; i <= 400; ++i) {
     const double x = i / 100.0;
