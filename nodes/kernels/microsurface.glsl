@@ -15,9 +15,14 @@ LAMINA_FN float lamina_projected_area(int distribution, vec3 w, float m) {
   return max((1.0f + lamina_smith_lambda(distribution, w, m)) * w.z, 0.0f);
 }
 
-// The height distribution's CDF on [-1, 1] and its inverse.
+// The height distribution's CDF on [-1, 1] and its inverse. The inverse keeps 1e-6 from either end:
+// light that meets the surface at its very top and refracts continues at the very bottom of the
+// other side's heights, where C1(h) = 0 would mask every direction up completely, however little
+// Lambda says it is masked (at h = -1 + 1e-6 and Lambda = 1e-4 it escapes with probability
+// 0.9986, as it does at any height a real draw reaches). At exactly -1 such walks were trapped
+// until the event limit lost them.
 LAMINA_FN float lamina_height_cdf(float h) { return clamp(0.5f * (h + 1.0f), 0.0f, 1.0f); }
-LAMINA_FN float lamina_height_inverse_cdf(float u) { return clamp(2.0f * u - 1.0f, -1.0f, 1.0f); }
+LAMINA_FN float lamina_height_inverse_cdf(float u) { return clamp(2.0f * u - 1.0f, -1.0f + 1.0e-6f, 1.0f - 1.0e-6f); }
 
 // The probability that light leaving height h along w (travelling, w.z > 0) escapes the
 // microsurface: C1(h)^Lambda(w) (Heitz et al. 2016, eq. 6 with Smith's height-correlated masking).
@@ -36,9 +41,8 @@ LAMINA_FN float lamina_next_height(int distribution, vec3 w, float h, float m, f
   if (abs(w.z) < 1.0e-5f) return h;
   if (u > 1.0f - lamina_escape_probability(distribution, w, h, m)) return 2.0f;
   float lambda = lamina_smith_lambda(distribution, w, m);
-  // At the lowest height (C1(h) = 0) with a Lambda so small that the power underflows, 0 / 0: the
-  // floor keeps the light there instead (a reference walk of fabric met it, going up at 45 degrees
-  // under a boundary of slope 0.36, and returned NaN).
+  // Where Lambda is so small that the power underflows, the floor keeps the quotient finite (at
+  // C1(h) = 0 it was 0 / 0, and a reference walk of fabric returned NaN).
   return lamina_height_inverse_cdf(lamina_height_cdf(h) / max(pow(1.0f - u, 1.0f / lambda), 1.0e-30f));
 }
 
