@@ -142,10 +142,9 @@ LAMINA_FN vec2 lamina_beckmann_visible_slopes(float cos_theta, float sin_theta, 
 
 // Draws a Beckmann normal n of RMS slope m with the density of visible normals D_v(n) seen from v
 // (v.z >= -1.5 m |v.xy|, the cotangent lamina_beckmann_visible_slopes keeps its digits down to;
-// Heitz and d'Eon 2014): stretch v to
-// slope 1 (the distribution's shape does not change with m, and a facet of slope p = m q shows v
-// what one of slope q shows the stretched direction), draw the slopes in v's azimuth, rotate them
-// back and scale them by m.
+// Heitz and d'Eon 2014): stretch v to slope 1 (the distribution's shape does not change with m, and
+// a facet of slope p = m q shows v what one of slope q shows the stretched direction), draw the
+// slopes in v's azimuth, rotate them back and scale them by m.
 LAMINA_FN vec3 lamina_sample_beckmann_visible_normal(vec3 v, float m, vec2 u) {
   vec3 vs = normalize(vec3(m * v.x, m * v.y, v.z));
   float sin_theta = sqrt(vs.x * vs.x + vs.y * vs.y);
@@ -180,15 +179,16 @@ LAMINA_FN vec3 lamina_phase_sample(vec3 wi, float eta, int distribution, int fre
   bool raised = beckmann && wi.z < -LAMINA_BECKMANN_LOWEST_COT * mm * planar;
   vec2 azimuth = planar > 0.0f ? vec2(wi.x, wi.y) / planar : vec2(1.0f, 0.0f);
   vec3 seen = raised ? normalize(vec3(azimuth, -LAMINA_BECKMANN_LOWEST_COT * mm)) : wi;
-  vec3 n = ggx        ? lamina_sample_ggx_visible_normal(wi, max(m, LAMINA_MIN_SLOPE), vec2(u.x, u.y))
+  vec3 n = ggx        ? lamina_sample_ggx_visible_normal(wi, mm, vec2(u.x, u.y))
            : beckmann ? lamina_sample_beckmann_visible_normal(seen, mm, vec2(u.x, u.y))
                       : sample_microfacet_normal(distribution, m, vec2(u.x, u.y));
   float wi_n = dot(wi, n);
   float area = lamina_projected_area(distribution, wi, m);
   if (wi_n <= 0.0f || n.z <= 0.0f || area <= 0.0f) return vec3(0.0f);
   // D_wi(n) over the density n was drawn with: 1 for visible normals seen from wi itself.
-  float drawn_weight = ggx ? 1.0f
-                     : raised ? wi_n * lamina_projected_area(distribution, seen, m) / (max(dot(seen, n), 1.0e-30f) * area)
+  float seen_area = lamina_projected_area(distribution, seen, m);
+  float drawn_weight = ggx        ? 1.0f
+                     : raised   ? wi_n * seen_area / (max(dot(seen, n), 1.0e-30f) * area)
                      : beckmann ? 1.0f
                                 : wi_n / (area * n.z);
   float fresnel = lamina_fresnel_dielectric(fresnel_mode, wi_n, eta);

@@ -265,12 +265,13 @@ struct LaminaParams {
 // Light the specular part of any other base sends into the boundary from below is not followed
 // (it is lost, never created). An Oren-Nayar base's s has mean 0 (c is its mean value), so the
 // light its direction-dependent terms send there averages out instead of being lost; c as its
-// direction-free C1 share alone lost 8.6% of a white base's light under a clear coat (sugar). Every factor is symmetric in l and v, so the sum is reciprocal; each
-// step passes on at most the energy it received (the boundary reflects at most E + M = 1 - T, t <= 1,
-// a base's diffuse reflectance is at most 1, and a metal's echo, trapped light and first exit add
-// up to at most a_all, what it reflects with its Fresnel term at the arriving direction's cosine:
-// an estimate, not a bound, which the strict furnace test checks), so no stack reflects more than
-// it receives.
+// direction-free C1 share alone lost 8.6% of a white base's light under a clear coat (sugar).
+// Every factor is symmetric in l and v, so the sum is reciprocal; each step passes on at most the
+// energy it received (the boundary reflects at most E + M = 1 - T, t <= 1, a base's diffuse
+// reflectance is at most 1 (Oren-Nayar's mean up to 1.0003, the course's model's own excess), and
+// a metal's echo, trapped light and first exit add up to at most a_all, what it reflects with its
+// Fresnel term at the arriving direction's cosine: an estimate, not a bound, which the strict
+// furnace test checks), so no stack reflects more than it receives.
 
 // The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
 // refract_down computes it; 0 when it cannot enter.
@@ -537,7 +538,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.albedo = inputs[i].colour0;
       p.sigma = inputs[i].scalars.x;
       // A diffuse substrate's direction-free part: Lambert's albedo / pi, Oren-Nayar's mean value.
-      p.diffuse = entries[i].model == LAMINA_SUBSTRATE_OREN_NAYAR ? oren_nayar_mean(p.albedo, p.sigma) : lambert(p.albedo);
+      bool rough = entries[i].model == LAMINA_SUBSTRATE_OREN_NAYAR;
+      p.diffuse = rough ? oren_nayar_mean(p.albedo, p.sigma) : lambert(p.albedo);
     }
     params[i] = p;
   }
