@@ -422,9 +422,14 @@ LAMINA_FN float lamina_gauss5_weight(int i) {
   return 0.5f * w;
 }
 
-// c of layer i from its base's: U = int u_B cos, W = int u_B t^2 R cos over the hemisphere under the
-// boundary (R = 1 outside the exit cone, E(mu_out) inside it, integrated over mu_out, where the
-// integrand is smooth: mu dmu = mu_out dmu_out / eta^2), K = c_B U W / pi.
+// c of layer i from its base's. The base's diffuse light leaves it with radiance c_B u_B(w) times
+// what it received, weighted by u_B of where that came from; the boundary sends R t^2 of it back
+// down at the same cosine, where the base takes it in with u_B again. So one round trip keeps
+// K = c_B int u_B^2 t^2 R cos over the hemisphere under the boundary (R = 1 outside the exit
+// cone, E(mu_out) inside it, integrated over mu_out, where the integrand is smooth: mu dmu =
+// mu_out dmu_out / eta^2). (The product c_B (int u_B cos)(int u_B t^2 R cos) / pi, used before,
+// equals it only for a uniform u_B, a diffuse substrate right under the layer; under a layer over
+// a layer it lost up to 14% of a lossless white stack's light.)
 LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                           LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   int base = entries[i].first;
@@ -434,7 +439,6 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   float inv_eta2 = 1.0f / (eta * eta);
   float mu_critical = lamina_safe_sqrt(1.0f - inv_eta2);  // beyond it (mu < mu_critical) light stays
   float mu_out_least = lamina_safe_sqrt(1.0f - eta * eta);  // the outer cosine of a grazing ray below
-  vec3 u_sum = vec3(0.0f);
   vec3 w_sum = vec3(0.0f);
   for (int q = 0; q < 5; ++q) {
     float weight = lamina_gauss5_weight(q);
@@ -442,8 +446,7 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     float mu = mu_critical * lamina_gauss5_node(q);
     vec3 u = lamina_diffuse_profile(entries, params, base, mu);
     vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu);
-    u_sum += (weight * mu_critical * mu) * u;
-    w_sum += (weight * mu_critical * mu) * u * t * t;
+    w_sum += (weight * mu_critical * mu) * u * u * t * t;
     // Inside the cone, by the outer cosine.
     float mu_out = mix(mu_out_least, 1.0f, lamina_gauss5_node(q));
     float mu_in = lamina_safe_sqrt(1.0f - (1.0f - mu_out * mu_out) * inv_eta2);
@@ -453,11 +456,9 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     u = lamina_diffuse_profile(entries, params, base, mu_in);
     t = one_way_absorption(params[i].absorption, params[i].thickness, mu_in);
     float span = (1.0f - mu_out_least) * inv_eta2;
-    u_sum += (weight * span * mu_out) * u;
-    w_sum += (weight * span * mu_out * reflected) * u * t * t;
+    w_sum += (weight * span * mu_out * reflected) * u * u * t * t;
   }
-  // U = 2 pi u_sum, W = 2 pi w_sum.
-  vec3 k = c_base * (4.0f * LAMINA_PI) * u_sum * w_sum;
+  vec3 k = c_base * (2.0f * LAMINA_PI) * w_sum;
   return c_base * inv_eta2 / max(vec3(1.0f) - k, vec3(1.0e-6f));
 }
 
