@@ -73,17 +73,33 @@ double height_correlated_albedo_quadrature(int distribution, int fresnel, float 
   });
 }
 
-double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks,
-                                 uint64_t seed) {
+MicrosurfaceStatistics microsurface_statistics(int distribution, int fresnel, float mu, float m, float eta, int walks,
+                                               uint64_t seed) {
   const MicrosurfaceBoundary boundary{eta, distribution, fresnel, m};
   const vec3 from = view_of_cosine(mu);
   Pcg32 rng(seed, 0x6d756c7469ull);
-  double sum = 0.0;
+  MicrosurfaceStatistics stats;
+  double multiple = 0.0, transmitted = 0.0, mean_path = 0.0, at_depth = 0.0;
   for (int w = 0; w < walks; ++w) {
     const MicrosurfaceSample s = microsurface_sample(boundary, from, rng);
-    if (s.events >= 2 && s.direction.z > 0.0f) sum += double(s.weight);
+    if (s.events >= 2 && s.direction.z > 0.0f) multiple += double(s.weight);
+    if (s.direction.z < 0.0f) {
+      const double x = 1.0 / double(-s.direction.z);
+      transmitted += double(s.weight);
+      mean_path += double(s.weight) * x;
+      at_depth += double(s.weight) * std::exp(-double(k::LAMINA_ALBEDO_PATH_DEPTH) * x);
+    }
   }
-  return sum / double(walks);
+  stats.multiple = multiple / double(walks);
+  // r = x_s / g: g the mean path, or -ln(mean of exp(-depth x)) / depth; 1 where nothing passes.
+  const float mu_below = k::lamina_cosine_below(mu, eta);
+  if (transmitted > 0.0 && mu_below > 0.0f) {
+    const double range = double(k::LAMINA_ALBEDO_PATH_RANGE);
+    const double g_depth = -std::log(at_depth / transmitted) / double(k::LAMINA_ALBEDO_PATH_DEPTH);
+    stats.path_ratio = std::min(range, transmitted / (mean_path * double(mu_below)));
+    stats.depth_ratio = g_depth > 0.0 ? std::min(range, 1.0 / (g_depth * double(mu_below))) : range;
+  }
+  return stats;
 }
 
 int dielectric_albedo_table_entry(int combo, int i, int j, int k_) {
@@ -103,18 +119,49 @@ int conductor_cone_table_entry(int combo, int i, int j, int k_) {
   return int(std::clamp(std::floor(c * 65535.0), 0.0, 65535.0));
 }
 
-int dielectric_multiple_table_entry(int combo, int i, int j, int k_, int single) {
+namespace {
+
+// The seed of a node's walks.
+uint64_t node_seed(int combo, int i, int j, int k_) {
+  return uint64_t(((combo * k::LAMINA_ALBEDO_ETAS + i) * k::LAMINA_ALBEDO_SLOPES + j) * k::LAMINA_ALBEDO_COSINES + k_) +
+         1;
+}
+
+MicrosurfaceStatistics node_statistics(int combo, int i, int j, int k_) {
+  const float eta = k::lamina_albedo_node_eta(i);
+  return microsurface_statistics(combo / 2, combo % 2, k::lamina_albedo_node_cosine(k_, eta),
+                                 k::lamina_albedo_node_slope(j), eta, kMultipleScatteringWalks,
+                                 node_seed(combo, i, j, k_));
+}
+
+// M as the table holds it, from the node's single-scattering entry and its walks' multiple share.
+int multiple_entry(int combo, int i, int j, int k_, int single, double multiple) {
   const int distribution = combo / 2;
   const int fresnel = combo % 2;
   const float eta = k::lamina_albedo_node_eta(i);
   const float mu = k::lamina_albedo_node_cosine(k_, eta);
   const float m = k::lamina_albedo_node_slope(j);
-  const uint64_t node =
-      uint64_t(((combo * k::LAMINA_ALBEDO_ETAS + i) * k::LAMINA_ALBEDO_SLOPES + j) * k::LAMINA_ALBEDO_COSINES + k_);
-  const double whole = height_correlated_albedo_quadrature(distribution, fresnel, mu, m, eta, kAlbedoTableStrata) +
-                       multiply_scattered_albedo(distribution, fresnel, mu, m, eta, kMultipleScatteringWalks, node + 1);
+  const double whole =
+      height_correlated_albedo_quadrature(distribution, fresnel, mu, m, eta, kAlbedoTableStrata) + multiple;
   const int surplus = int(std::lround(std::max(0.0, whole - double(single) / 65535.0) * 65535.0));
   return std::clamp(surplus, 0, 65535 - single);
+}
+
+int path_entry(double r) {
+  return int(std::clamp(std::lround(r / double(k::LAMINA_ALBEDO_PATH_RANGE) * 65535.0), 0l, 65535l));
+}
+
+}  // namespace
+
+int dielectric_multiple_table_entry(int combo, int i, int j, int k_, int single) {
+  return multiple_entry(combo, i, j, k_, single, node_statistics(combo, i, j, k_).multiple);
+}
+
+int transmitted_path_table_entry(int combo, int i, int j, int k_, bool at_depth) {
+  // A smooth boundary refracts every ray to mu_below: r = 1 exactly, as the composition's smooth case.
+  if (j == 0) return path_entry(1.0);
+  const MicrosurfaceStatistics stats = node_statistics(combo, i, j, k_);
+  return path_entry(at_depth ? stats.depth_ratio : stats.path_ratio);
 }
 
 namespace {
@@ -169,10 +216,13 @@ std::vector<int> dielectric_albedo_table() {
     int* at = table.data() + size_t(row) * size_t(width);
     for (int c = 0; c < k::LAMINA_ALBEDO_COSINES; ++c) {
       const int single = dielectric_albedo_table_entry(combo, i, j, c);
-      at[j * k::LAMINA_ALBEDO_COSINES + c] = single;
-      at[k::LAMINA_ALBEDO_MULTIPLE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c] =
-          dielectric_multiple_table_entry(combo, i, j, c, single);
-      at[k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c] = conductor_cone_table_entry(combo, i, j, c);
+      const MicrosurfaceStatistics stats = node_statistics(combo, i, j, c);
+      const int column = j * k::LAMINA_ALBEDO_COSINES + c;
+      at[column] = single;
+      at[k::LAMINA_ALBEDO_MULTIPLE_COLUMN + column] = multiple_entry(combo, i, j, c, single, stats.multiple);
+      at[k::LAMINA_ALBEDO_CONE_COLUMN + column] = conductor_cone_table_entry(combo, i, j, c);
+      at[k::LAMINA_ALBEDO_PATH_COLUMN + column] = path_entry(j == 0 ? 1.0 : stats.path_ratio);
+      at[k::LAMINA_ALBEDO_DEPTH_COLUMN + column] = path_entry(j == 0 ? 1.0 : stats.depth_ratio);
     }
   });
   // Every cell's lift, then every node raised by the most its cells ask.
@@ -233,7 +283,7 @@ std::string dielectric_albedo_inc(const std::vector<int>& table) {
   std::string text =
       "// Generated from the kernels by graph/cpu/energy_table.cpp (LAMINA_UPDATE_TABLES=1 lamina_tests\n"
       "// -tc='the dielectric albedo table*'): energy.glsl's table, a row per cosine run, the runs of E,\n"
-      "// then those of M and then those of C for each (combination, eta).\n";
+      "// then those of M, C, P and Q for each (combination, eta).\n";
   for (size_t at = 0; at < table.size(); ++at) {
     text += std::to_string(table[at]);
     const bool run_end = (at + 1) % size_t(k::LAMINA_ALBEDO_COSINES) == 0;

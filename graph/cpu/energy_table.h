@@ -18,10 +18,24 @@ double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, flo
 // Microfacet-Based BRDFs", eq. 99) in place of the model's G1(l) G1(v).
 double height_correlated_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n);
 
-// What that microsurface reflects after scattering two or more times (Heitz, Hanika, d'Eon and
-// Dachsbacher 2016): the mean over `walks` random walks from a view of cosine mu of the weight of
-// those that leave above after two events or more. Deterministic for a seed.
-double multiply_scattered_albedo(int distribution, int fresnel, float mu, float m, float eta, int walks, uint64_t seed);
+// What random walks over that microsurface (Heitz, Hanika, d'Eon and Dachsbacher 2016) from a view
+// of cosine mu find, deterministic for a seed: `multiple`, the mean weight of the walks that leave
+// above after two events or more (what the boundary reflects beyond single scattering); and for
+// those that leave below (every event counted), the ratios r of lamina_rough_transmittance
+// (energy.glsl), x_s / g with x_s = 1 / mu_below the path per unit thickness of a smooth boundary's
+// refracted light: `path_ratio` with g the mean of x = 1 / |cos| (the limit of depth 0),
+// `depth_ratio` with g = -ln(mean of exp(-depth x)) / depth at depth LAMINA_ALBEDO_PATH_DEPTH, each
+// mean weighted by the walks' weights; at most LAMINA_ALBEDO_PATH_RANGE, and 1 where nothing passes.
+// At grazing views most of what passes has scattered more than once, on shorter paths than single
+// scattering's (at 89 degrees through a GGX boundary of slope 0.25 and index 1.45, the mean path is
+// 1.7 times a smooth boundary's where single scattering's is 2.4 times).
+struct MicrosurfaceStatistics {
+  double multiple = 0.0;
+  double path_ratio = 1.0;
+  double depth_ratio = 1.0;
+};
+MicrosurfaceStatistics microsurface_statistics(int distribution, int fresnel, float mu, float m, float eta, int walks,
+                                               uint64_t seed);
 
 // The share of a conductor lobe (lamina_conductor_eval with a Fresnel term of 1: D G / (4 cos_l
 // cos_v)) that a view of cosine mu sends into the cone cos_l > cone_cosine, integrated with cos_l, on
@@ -36,7 +50,7 @@ inline constexpr int kAlbedoTableStrata = 192;
 inline constexpr int kMultipleScatteringWalks = 32768;
 
 // The whole table in the kernels' order (albedo_grid.glsl: a row per combination and eta, each of
-// the blocks E, M and C): E as round(65535 E) rounded up and then raised to bound E between the nodes
+// the blocks E, M, C, P and Q): E as round(65535 E) rounded up and then raised to bound E between the nodes
 // too (below); M as round(65535 M), at most 65535 - E.
 //
 // Why E is raised: the energy-conserving composition lets 1 - E - M through a boundary whose lobe
@@ -54,6 +68,10 @@ inline constexpr double kAlbedoBoundMargin = 1.5;
 // inside the exit cone of eta node i (the whole hemisphere where eta <= 1), as round(65535 C)
 // rounded down.
 int conductor_cone_table_entry(int combo, int i, int j, int k);
+
+// One entry of the block P (at_depth false) or Q (true): round(65535 r / LAMINA_ALBEDO_PATH_RANGE) of
+// the node's microsurface_statistics (the walks of its M), 1 at the nodes of a smooth boundary.
+int transmitted_path_table_entry(int combo, int i, int j, int k, bool at_depth);
 
 // One entry of E as the table holds it: the quadrature's, raised as above.
 int dielectric_albedo_bounded_entry(int combo, int i, int j, int k);

@@ -16,16 +16,24 @@ const int LAMINA_ALBEDO_SLOPES = 13;
 const int LAMINA_ALBEDO_COSINES = 25;
 const int LAMINA_ALBEDO_COMBOS = 6;  // distributions (beckmann, blinn, ggx) x Fresnel (exact, approximations)
 // The table is stored as an image, one row per (combination, eta) (the GLSL back end binds it as an
-// R16UI texture). A row holds three blocks: E, the single-scattering albedo, as LAMINA_ALBEDO_SLOPES
+// R16UI texture). A row holds five blocks: E, the single-scattering albedo, as LAMINA_ALBEDO_SLOPES
 // runs of LAMINA_ALBEDO_COSINES texels; from column LAMINA_ALBEDO_MULTIPLE_COLUMN, M, what the
 // boundary's microsurface reflects beyond E (energy.glsl), on the same grid; and from column
 // LAMINA_ALBEDO_CONE_COLUMN, C, the share of a conductor lobe of the combination's distribution
 // that leaves inside the exit cone of a boundary of index eta above it (energy.glsl), on the same
-// grid where eta >= 1 (the rows under 1 hold the whole hemisphere's, as at eta = 1).
+// grid where eta >= 1 (the rows under 1 hold the whole hemisphere's, as at eta = 1); and from columns
+// LAMINA_ALBEDO_PATH_COLUMN and LAMINA_ALBEDO_DEPTH_COLUMN, P and Q, how long the path is that the
+// light the boundary lets through takes in the medium below (energy.glsl, lamina_rough_transmittance),
+// as ratios r of cosines stored as round(65535 r / LAMINA_ALBEDO_PATH_RANGE) (under an index below 1,
+// rough facets can bend the light nearer the normal than a smooth boundary does: r above 1).
 const int LAMINA_ALBEDO_BLOCK = LAMINA_ALBEDO_SLOPES * LAMINA_ALBEDO_COSINES;
 const int LAMINA_ALBEDO_MULTIPLE_COLUMN = LAMINA_ALBEDO_BLOCK;
 const int LAMINA_ALBEDO_CONE_COLUMN = 2 * LAMINA_ALBEDO_BLOCK;
-const int LAMINA_ALBEDO_TABLE_WIDTH = 3 * LAMINA_ALBEDO_BLOCK;
+const int LAMINA_ALBEDO_PATH_COLUMN = 3 * LAMINA_ALBEDO_BLOCK;
+const int LAMINA_ALBEDO_DEPTH_COLUMN = 4 * LAMINA_ALBEDO_BLOCK;
+const int LAMINA_ALBEDO_TABLE_WIDTH = 5 * LAMINA_ALBEDO_BLOCK;
+const float LAMINA_ALBEDO_PATH_RANGE = 2.0f;
+const float LAMINA_ALBEDO_PATH_DEPTH = 0.5f;  // the optical depth of block Q
 const int LAMINA_ALBEDO_COMBO_SIZE = LAMINA_ALBEDO_ETAS * LAMINA_ALBEDO_TABLE_WIDTH;
 
 // A table's combination: the distribution's code, times 2, plus 1 for the Schlick and Lazanyi

@@ -12,6 +12,8 @@
 #include <tuple>
 
 #include "graph/cpu/energy_table.h"
+#include "graph/cpu/microsurface.h"
+#include "graph/cpu/pcg32.h"
 #include "graph/cpu_test_support.h"
 #include "nodes/kernels/kernels.h"
 
@@ -92,6 +94,15 @@ TEST_CASE(
     CHECK(single + multiple <= 65535);
     const int cone = int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c, row));
     CHECK(std::abs(cone - lamina::cpu::conductor_cone_table_entry(combo, i, j, c)) <= 2);
+    // The path ratios come from the same walks: a turn taken otherwise moves them by 1% or so.
+    for (bool at_depth : {false, true}) {
+      const int column =
+          (at_depth ? k::LAMINA_ALBEDO_DEPTH_COLUMN : k::LAMINA_ALBEDO_PATH_COLUMN) + j * k::LAMINA_ALBEDO_COSINES + c;
+      const int path = int(k::lamina_albedo_texel(column, row));
+      const int fresh = lamina::cpu::transmitted_path_table_entry(combo, i, j, c, at_depth);
+      CAPTURE(at_depth);
+      CHECK(std::abs(path - fresh) <= 2 + fresh / 50);
+    }
   }
 }
 
@@ -174,6 +185,125 @@ TEST_CASE("the albedo quadrature agrees with a plain integration over the hemisp
       CAPTURE(eta);
       CHECK(lamina::cpu::dielectric_albedo_quadrature(distribution, 0, mu, m, eta, 192) ==
             doctest::Approx(plain).epsilon(2.0e-3));
+    }
+  }
+}
+
+namespace {
+
+// The mean of exp(-tau x), x = 1 / |cos|, over the directions below into which the boundary's
+// transmission (lamina_boundary_eval, Walter et al. 2007, eq. 21) sends light from v, weighted by
+// f |cos|; at tau = 0, the mean of x. The midpoint rule in (sqrt(cos), phi), which resolves the
+// paths near the horizon: independent of the refraction through sampled normals of the table's
+// quadrature.
+double plain_transmitted_mean(int distribution, vec3 v, float m, float eta, double tau) {
+  const int n = 400;
+  double energy = 0.0, sum = 0.0;
+  for (int a = 0; a < n; ++a) {
+    const double s = (a + 0.5) / n, c = s * s, weight = 2.0 * s;
+    for (int b = 0; b < 2 * n; ++b) {
+      const double phi = M_PI * (b + 0.5) / n, sin_x = std::sqrt(1.0 - c * c);
+      const vec3 x(float(sin_x * std::cos(phi)), float(sin_x * std::sin(phi)), float(-c));
+      const double f = double(k::lamina_boundary_eval(v, x, eta, distribution, 0, m)) * c * weight;
+      energy += f;
+      sum += f * (tau > 0.0 ? std::exp(-tau / c) : 1.0 / c);
+    }
+  }
+  return sum / energy;
+}
+
+}  // namespace
+
+namespace {
+
+// The mean of exp(-tau x) (tau > 0) or of x (tau = 0), x = 1 / |cos|, over the directions below in
+// which walks over the microsurface from v leave it, weighted by the walks' weights.
+double walked_transmitted_mean(int distribution, vec3 v, float m, float eta, double tau, int walks) {
+  const lamina::cpu::MicrosurfaceBoundary boundary{eta, distribution, 0, m};
+  lamina::cpu::Pcg32 rng(0x7a7, 0x11);
+  double energy = 0.0, sum = 0.0;
+  for (int w = 0; w < walks; ++w) {
+    const lamina::cpu::MicrosurfaceSample s = lamina::cpu::microsurface_sample(boundary, v, rng);
+    if (s.direction.z >= 0.0f) continue;
+    const double x = 1.0 / double(-s.direction.z);
+    energy += double(s.weight);
+    sum += double(s.weight) * (tau > 0.0 ? std::exp(-tau * x) : x);
+  }
+  return sum / energy;
+}
+
+}  // namespace
+
+TEST_CASE("the walks' transmitted paths agree with a plain integration of the boundary's lobe where it scatters once") {
+  // Where light passes a boundary after one scattering event (steep views, gentle slopes), the
+  // walks' path ratios (microsurface_statistics) are those of the single-scattering transmission
+  // lobe, integrated over the directions below.
+  for (int distribution = 0; distribution < 3; ++distribution) {
+    for (auto [mu_, m_, eta_] :
+         {std::tuple{0.5f, 0.1f, 1.45f}, std::tuple{0.9f, 0.2f, 1.33f}, std::tuple{0.8f, 0.15f, 0.8f}}) {
+      const float mu = mu_, m = m_, eta = eta_;
+      const vec3 v(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+      const double x_s = 1.0 / double(k::lamina_cosine_below(mu, eta));
+      const double depth = double(k::LAMINA_ALBEDO_PATH_DEPTH);
+      const double plain_mean = x_s / plain_transmitted_mean(distribution, v, m, eta, 0.0);
+      const double plain_depth = x_s * depth / -std::log(plain_transmitted_mean(distribution, v, m, eta, depth));
+      const lamina::cpu::MicrosurfaceStatistics stats =
+          lamina::cpu::microsurface_statistics(distribution, 0, mu, m, eta, 1 << 16, 99);
+      CAPTURE(distribution);
+      CAPTURE(mu);
+      CAPTURE(m);
+      CAPTURE(eta);
+      CHECK(stats.path_ratio == doctest::Approx(plain_mean).epsilon(0.01));
+      CHECK(stats.depth_ratio == doctest::Approx(plain_depth).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("the table's path ratios are the walks' between the nodes too") {
+  // Off the nodes, where the composition reads them, at grazing views where they move fastest.
+  for (int distribution = 0; distribution < 3; ++distribution) {
+    for (auto [mu_, m_, eta_] : {std::tuple{0.03f, 0.3f, 1.45f}, std::tuple{0.17f, 0.25f, 1.6f},
+                                 std::tuple{0.5f, 0.5f, 1.5f}, std::tuple{0.7f, 0.4f, 0.8f}}) {
+      const float mu = mu_, m = m_, eta = eta_;
+      const lamina::cpu::MicrosurfaceStatistics stats =
+          lamina::cpu::microsurface_statistics(distribution, 0, mu, m, eta, 1 << 16, 5);
+      const glm::vec2 table =
+          k::lamina_boundary_path_ratios(distribution, 0, k::lamina_albedo_grid_xy(m, eta), mu, eta);
+      CAPTURE(distribution);
+      CAPTURE(mu);
+      CAPTURE(m);
+      CAPTURE(eta);
+      CHECK(double(table.x) == doctest::Approx(stats.path_ratio).epsilon(0.03));
+      CHECK(double(table.y) == doctest::Approx(stats.depth_ratio).epsilon(0.03));
+    }
+  }
+}
+
+TEST_CASE("a medium under a rough boundary lets through at most what the boundary's paths through it do, and nearly") {
+  // lamina_rough_transmittance against the mean of exp(-tau x) over the walks' transmitted paths, at
+  // grazing views where the paths spread most. Within the bound, the chord of the exponent is closest
+  // at the depths the table holds (0 and LAMINA_ALBEDO_PATH_DEPTH) and furthest between and beyond.
+  for (int distribution : {0, 2}) {
+    for (auto [mu_, m_] :
+         {std::tuple{0.0175f, 0.25f}, std::tuple{0.087f, 0.5f}, std::tuple{0.17f, 0.25f}, std::tuple{0.5f, 0.5f}}) {
+      const float mu = mu_, m = m_, eta = 1.45f;
+      const vec3 v(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+      const glm::vec2 ratios =
+          k::lamina_boundary_path_ratios(distribution, 0, k::lamina_albedo_grid_xy(m, eta), mu, eta);
+      for (double tau : {0.05, 0.3, 0.5, 0.6, 1.2}) {
+        const double truth = walked_transmitted_mean(distribution, v, m, eta, tau, 1 << 17);
+        const double model =
+            double(k::lamina_rough_transmittance(vec3(float(tau)), 1.0f, k::lamina_cosine_below(mu, eta), ratios).x);
+        CAPTURE(distribution);
+        CAPTURE(mu);
+        CAPTURE(m);
+        CAPTURE(tau);
+        CAPTURE(truth);
+        // The table's interpolation and the walks' noise may move it by a little either way.
+        CHECK(model <= truth * 1.02);
+        if (tau <= 0.6) CHECK(model >= truth * 0.9);
+        if (tau > 0.6) CHECK(model >= truth * 0.6);
+      }
     }
   }
 }
