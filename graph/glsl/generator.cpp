@@ -244,7 +244,6 @@ class MaterialEmitter final : public OpWriter {
           << at << "k = " << vec3_literal(q.k) << ";\n"
           << at << "normal = " << vec3_literal(q.normal) << ";\n"
           << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
-          << at << "trap = " << vec3_literal(q.trap) << ";\n"
           << at << "forward = " << vec3_literal(q.forward) << ";\n"
           << at << "grid = " << vec2_literal(q.grid) << ";\n"
           << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n";

@@ -234,7 +234,6 @@ struct LaminaParams {
   vec3 k;
   vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
-  vec3 trap;        // energy-conserving model, a layer over a conductor: Gamma (lamina_trap_gain)
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
@@ -327,6 +326,47 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   return f * inside;
 }
 
+// Gamma of layer i over a conductor: the share of the light trapped outside its exit cone that
+// leaves, for light the metal reflected from cosine mu_start under the boundary, followed as one
+// stream at one cosine mu_o. Each time it crosses the medium and comes back (t(mu_o)^2) the metal
+// reflects a_in(mu_o) of it into the cone, where it leaves with the boundary's transmittance at the
+// middle of the cone's cosines or comes back; a_out(mu_o) stays trapped. Gamma = t_o^2 p / (1 - q),
+// the series of every return, p = a_in t T and q = a_out t_o^2 + a_in t^2 (1 - T); p + q <= a_all
+// <= 1, so it never exceeds 1. 0 where the boundary has no total reflection (eta <= 1).
+// Where the trapped light lies: a metal lobe of slope m tilts its normals by about atan(m) / sqrt(2)
+// in the plane of reflection (the RMS of one slope component), and turns the reflected direction by
+// twice that, so the part beyond the cone's edge lies on average sqrt(2 / pi) * 2 / sqrt(2) atan(m)
+// = 1.13 atan(m) beyond the edge (a half-normal's mean) when the light arrives at the edge, beyond
+// the mirror direction when it arrives outside the cone. mu_o is that angle's cosine, never more
+// grazing than the mean cosine 2 mu_c / 3 of light spread evenly outside the edge mu_c, which a
+// wide lobe approaches. (That mean alone, for every lobe, left the light a narrow lobe traps just
+// beyond the edge, which soon returns into the cone, as good as lost: schlick_gold 11.9% and
+// silver_paint 9.5% low between 60 and 80 degrees; 7.0% and 6.2% with the trap's own angle.)
+const float LAMINA_TRAP_SPREAD = 1.13f;
+LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_start) {
+  float eta = params[i].eta;
+  if (eta <= 1.0f) return vec3(0.0f);
+  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
+  float theta_even = lamina_acos(2.0f * mu_edge / 3.0f);
+  float theta_start = max(lamina_acos(mu_start), lamina_acos(mu_edge));
+  float slope = params[entries[i].first].m;
+  float mu_o = cos(min(theta_start + LAMINA_TRAP_SPREAD * atan(slope), theta_even));
+  vec3 a_all = vec3(0.0f);
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
+  vec3 a_out = max(a_all - a_in, vec3(0.0f));
+  vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
+  float mu_c = 0.5f * (1.0f + mu_edge);
+  float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
+  float multiple = 0.0f;
+  float reflected =
+      lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_c_out, eta, multiple);
+  vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
+  vec3 p = a_in * t_c * (1.0f - reflected);
+  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * reflected;
+  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
+}
+
 // The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
 // boundary, whose reflection back down there (E + M at the outer cosine) is `reflected`; 0 for any
 // other base, and echo 1. Of what the metal reflects from there, a_in stays inside the exit cone, and
@@ -335,7 +375,7 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
 // specular direction that multiplies the carry by echo = 1 / (1 - a_in t^2 E) (for smooth layers
 // exactly the series of two parallel mirrors). The rest, a_out = a_all - a_in of every return, goes
 // outside the cone, where the boundary reflects all of it back (total internal reflection); of that
-// light a share Gamma (LaminaParams.trap, lamina_trap_gain) leaves in the end, after travelling on
+// light a share Gamma (lamina_trap_gain) leaves in the end, after travelling on
 // between metal and boundary. Returned: X = a_out echo Gamma.
 LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                     LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_below,
@@ -346,7 +386,7 @@ LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_
   vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all);
   vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_below);
   echo = 1.0f / max(vec3(1.0f) - a_in * t * t * reflected, vec3(1.0e-6f));
-  return max(a_all - a_in, vec3(0.0f)) * echo * params[i].trap;
+  return max(a_all - a_in, vec3(0.0f)) * echo * lamina_trap_gain(entries, params, i, mu_below);
 }
 
 // The trapped light's way out, the forward part of layer i over a conductor:
@@ -368,34 +408,6 @@ LAMINA_FN vec3 lamina_forward_part(vec3 u_l, vec3 u_v, vec3 coefficient, vec3 l,
   return coefficient * u_l * u_v * (1.0f - (l.x * v.x + l.y * v.y) / (s_l * s_v));
 }
 
-// Gamma of layer i over a conductor: the share of the light trapped outside its exit cone that
-// leaves, followed as one stream. Each time it crosses the medium and comes back (t(mu_o)^2, at the
-// mean cosine mu_o = 2 mu_c / 3 of light spread evenly in projected solid angle outside the cone's
-// edge mu_c), and the metal reflects a_in(mu_o) of it into the cone, where it leaves with the
-// boundary's transmittance at the middle of the cone's cosines or comes back; a_out(mu_o) stays
-// trapped. Gamma = t_o^2 p / (1 - q), the series of every return, p = a_in t T and
-// q = a_out t_o^2 + a_in t^2 (1 - T); p + q <= a_all <= 1, so it never exceeds 1. 0 where the boundary
-// has no total reflection (eta <= 1).
-LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
-  float eta = params[i].eta;
-  if (eta <= 1.0f) return vec3(0.0f);
-  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
-  float mu_o = 2.0f * mu_edge / 3.0f;
-  vec3 a_all = vec3(0.0f);
-  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
-  vec3 a_out = max(a_all - a_in, vec3(0.0f));
-  vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
-  float mu_c = 0.5f * (1.0f + mu_edge);
-  float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
-  float multiple = 0.0f;
-  float reflected =
-      lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_c_out, eta, multiple);
-  vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
-  vec3 p = a_in * t_c * (1.0f - reflected);
-  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * reflected;
-  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
-}
 
 // The light that crosses the medium of a layer whose base is a layer bounces between the two
 // boundaries: of what enters the gap, 1 / (1 - R_above R_below t^2) reaches the far side in the sum
@@ -565,7 +577,6 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.k = vec3(0.0f);
     p.normal = inputs[i].normal;
     p.diffuse = vec3(0.0f);
-    p.trap = vec3(0.0f);
     p.forward = vec3(0.0f);
     p.grid = vec2(0.0f);
     p.cone_grid = vec2(0.0f);
@@ -602,7 +613,6 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     // Only a layer over a conductor traps light: its quadrature is not spent on the others.
     if (lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(params[entries[i].first].m, max(params[i].eta, 1.0f));
-      params[i].trap = lamina_trap_gain(entries, params, i);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }
     if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
