@@ -492,7 +492,7 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   float mu_out_least = lamina_safe_sqrt(1.0f - eta * eta);  // the outer cosine of a grazing ray below
   // u_B is 0 below the cosine where light under the boundary can no longer enter every layer down
   // to the substrate (a boundary down to a lower index reflects the rest totally); the quadrature
-  // starts there, as five nodes across that kink were 2% off.
+  // starts there, as five nodes across that kink counted 2.5% too much.
   float n_least = params[i].ior;
   int j = base;
   for (int n = 0; n < LAMINA_STACK; ++n) {
