@@ -147,7 +147,10 @@ int multiple_entry(int combo, int i, int j, int k_, int single, double multiple)
   return std::clamp(surplus, 0, 65535 - single);
 }
 
-int path_entry(double r) {
+// An entry of P or Q from the node's walks. A smooth boundary (slope node 0) refracts every ray to
+// mu_below: r = 1 exactly, as the composition's smooth case.
+int path_entry(int j, const MicrosurfaceStatistics& stats, bool at_depth) {
+  const double r = j == 0 ? 1.0 : at_depth ? stats.depth_ratio : stats.path_ratio;
   return int(std::clamp(std::lround(r / double(k::LAMINA_ALBEDO_PATH_RANGE) * 65535.0), 0l, 65535l));
 }
 
@@ -158,10 +161,7 @@ int dielectric_multiple_table_entry(int combo, int i, int j, int k_, int single)
 }
 
 int transmitted_path_table_entry(int combo, int i, int j, int k_, bool at_depth) {
-  // A smooth boundary refracts every ray to mu_below: r = 1 exactly, as the composition's smooth case.
-  if (j == 0) return path_entry(1.0);
-  const MicrosurfaceStatistics stats = node_statistics(combo, i, j, k_);
-  return path_entry(at_depth ? stats.depth_ratio : stats.path_ratio);
+  return path_entry(j, node_statistics(combo, i, j, k_), at_depth);
 }
 
 namespace {
@@ -221,8 +221,8 @@ std::vector<int> dielectric_albedo_table() {
       at[column] = single;
       at[k::LAMINA_ALBEDO_MULTIPLE_COLUMN + column] = multiple_entry(combo, i, j, c, single, stats.multiple);
       at[k::LAMINA_ALBEDO_CONE_COLUMN + column] = conductor_cone_table_entry(combo, i, j, c);
-      at[k::LAMINA_ALBEDO_PATH_COLUMN + column] = path_entry(j == 0 ? 1.0 : stats.path_ratio);
-      at[k::LAMINA_ALBEDO_DEPTH_COLUMN + column] = path_entry(j == 0 ? 1.0 : stats.depth_ratio);
+      at[k::LAMINA_ALBEDO_PATH_COLUMN + column] = path_entry(j, stats, false);
+      at[k::LAMINA_ALBEDO_DEPTH_COLUMN + column] = path_entry(j, stats, true);
     }
   });
   // Every cell's lift, then every node raised by the most its cells ask.

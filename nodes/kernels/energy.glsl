@@ -134,8 +134,9 @@ LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, vec2 xy, f
 
 // What a medium of optical depth tau = sigma d (per channel, along its normal) lets through of the
 // light a rough boundary lets into it from a direction of cosine mu above: the mean of exp(-tau x)
-// over the directions the boundary's transmission lobe (lamina_boundary_eval) sends the light into,
-// weighted by the energy each carries, x = 1 / |cos| being the path per unit thickness. A smooth
+// over the directions its microsurface lets the light through in (after one scattering event or
+// more: the walks of microsurface.glsl, as the reference takes them), weighted by the energy each
+// carries, x = 1 / |cos| being the path per unit thickness. A smooth
 // boundary's is exp(-tau x_s), x_s = 1 / mu_below; a rough one's is less: the facets a grazing view
 // sees tilt toward it and bend the light further from the normal (through a 14 degree boundary of
 // index 1.45 at 80 degrees, the mean path is 1.5 times longer, and a tint under it absorbed 11% too
@@ -144,8 +145,8 @@ LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, vec2 xy, f
 // (block Q). g decreases with tau, from the mean path toward the shortest (the tilted mean of x),
 // and is convex where the paths' spread is skewed toward long ones, as here; so the chord between the
 // two for tau < tau_q, and g(tau_q) beyond, never let through more than the mean of exp(-tau x)
-// (within 1% to 7% of it for tau up to 0.6 at 80 to 89 degrees and m up to 0.5; beyond tau_q, up to a
-// third less at 89 degrees, where little passes). r = 1 at a smooth boundary's nodes, where this is
+// (a test holds it within 10% of the walks' mean for tau up to 0.6 at views from 60 to 89 degrees;
+// beyond tau_q, within 40%, where little passes). r = 1 at a smooth boundary's nodes, where this is
 // exactly exp(-tau x_s), and where the table has no entry.
 LAMINA_FN vec2 lamina_path_ratios_at(LAMINA_IN(LaminaAlbedoPoint) p) {
   if (p.first < 0) return vec2(1.0f);
