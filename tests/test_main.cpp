@@ -6,6 +6,10 @@
 
 #include <cstdio>
 
+#ifdef LAMINA_GL_TEST_MAIN
+#include "glsl/gl_runner.h"
+#endif
+
 namespace {
 
 int cases_selected = -1;  // -1 until a test run ends (listing options end without one)
@@ -30,9 +34,7 @@ struct SelectionCounter : doctest::IReporter {
 
 REGISTER_LISTENER("selection_counter", 1, SelectionCounter);
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_tests(int argc, char** argv) {
   doctest::Context context(argc, argv);
   int result = context.run();
   if (context.shouldExit()) return result;
@@ -41,4 +43,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   return result;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int status = run_tests(argc, argv);
+#ifdef LAMINA_GL_TEST_MAIN
+  lamina::gltest::check_leaks_now();  // while Mesa's threads are idle (see gl_runner.h)
+#endif
+  return status;
 }

@@ -19,6 +19,18 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
+// clang says __has_feature(address_sanitizer), GCC defines __SANITIZE_ADDRESS__; ASan carries LSan.
+#if defined(__SANITIZE_ADDRESS__)
+#define LAMINA_LEAK_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(leak_sanitizer)
+#define LAMINA_LEAK_SANITIZER 1
+#endif
+#endif
+#ifdef LAMINA_LEAK_SANITIZER
+#include <sanitizer/lsan_interface.h>
+#endif
+
 namespace lamina::gltest {
 
 static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "texels and outputs are read as packed RGBA floats");
@@ -592,6 +604,12 @@ double Runner::time_pass(const Pass& pass, int frames, std::string* error) {
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   if (!gl_ok("drawing", error)) return -1.0;
   return elapsed.count() / frames;
+}
+
+void check_leaks_now() {
+#ifdef LAMINA_LEAK_SANITIZER
+  __lsan_do_leak_check();
+#endif
 }
 
 }  // namespace lamina::gltest

@@ -83,4 +83,11 @@ class Runner {
   std::string renderer_, version_;
 };
 
+// Under LeakSanitizer, runs the process's leak check now; later ones, the one at exit included, are
+// then skipped. Programs that draw call it as main returns, after every Runner is gone: Mesa's
+// worker threads are idle then, whereas at exit its exit handlers stop them while the sanitizer
+// suspends every thread, and a thread caught half-way through its exit crashes the sanitizer
+// ("LeakSanitizer has encountered a fatal error", once in CI). Without the sanitizer: nothing.
+void check_leaks_now();
+
 }  // namespace lamina::gltest

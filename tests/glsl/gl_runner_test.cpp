@@ -1,6 +1,5 @@
 // The headless GL runner: exact float read-back in every context and GLSL version, MRT, uniform
 // blocks, and errors that say where.
-#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
 #include <algorithm>

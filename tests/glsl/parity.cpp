@@ -393,9 +393,7 @@ int broken_check_failures(const Checks& c, Perturbation kind) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_parity(int argc, char** argv) {
   std::vector<Run> runs;
   std::vector<std::string> files;
   std::string targets = "330,450,es300", modes = "inline,uniforms";
@@ -524,4 +522,12 @@ int main(int argc, char** argv) {
   std::printf("%s: %d of %d runs (%zu materials x %zu runs) %s\n", ok ? "PASS" : "FAIL", passed, total, programs.size(),
               runs.size(), perturbation == Perturbation::None ? "passed" : "failed as they must");
   return ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int status = run_parity(argc, argv);
+  gltest::check_leaks_now();
+  return status;
 }
