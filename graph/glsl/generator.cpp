@@ -246,7 +246,9 @@ class MaterialEmitter final : public OpWriter {
           << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
           << at << "forward = " << vec3_literal(q.forward) << ";\n"
           << at << "grid = " << vec2_literal(q.grid) << ";\n"
-          << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n";
+          << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
+          << at << "trap = " << vec4_literal(q.trap) << ";\n"
+          << at << "trap_medium = " << vec3_literal(q.trap_medium) << ";\n";
       }
       s << "}\n\n";
       return s.str();

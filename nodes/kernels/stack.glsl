@@ -237,6 +237,8 @@ struct LaminaParams {
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
+  vec4 trap;        // and what lamina_trap_gain needs that no direction changes (lamina_trap_resolve)
+  vec3 trap_medium;
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -345,26 +347,38 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
 const float LAMINA_TRAP_SPREAD = 1.13f;
 LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_start) {
-  float eta = params[i].eta;
-  if (eta <= 1.0f) return vec3(0.0f);
-  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
-  float theta_even = lamina_acos(2.0f * mu_edge / 3.0f);
-  float theta_start = max(lamina_acos(mu_start), lamina_acos(mu_edge));
-  float slope = params[entries[i].first].m;
-  float mu_o = cos(min(theta_start + LAMINA_TRAP_SPREAD * atan(slope), theta_even));
+  if (params[i].eta <= 1.0f) return vec3(0.0f);
+  vec4 trap = params[i].trap;
+  float mu_o = cos(min(max(lamina_acos(mu_start), trap.x) + trap.z, trap.y));
   vec3 a_all = vec3(0.0f);
   vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
   vec3 a_out = max(a_all - a_in, vec3(0.0f));
   vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
+  vec3 t_c = params[i].trap_medium;
+  vec3 p = a_in * t_c * (1.0f - trap.w);
+  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * trap.w;
+  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
+}
+
+// What lamina_trap_gain needs of layer i over a conductor that no direction changes, once per
+// shading point (LaminaParams.trap): the angle of the cone's edge, the even spread's mean angle,
+// the lobe's turn 1.13 atan(m), and what the boundary reflects back down at the middle of the
+// cone's cosines (E + M); t_c, the medium's one-way transmittance there. 0 for eta <= 1, where
+// nothing is trapped.
+LAMINA_FN vec4 lamina_trap_resolve(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, LAMINA_OUT(vec3) t_c) {
+  t_c = vec3(0.0f);
+  float eta = params[i].eta;
+  if (eta <= 1.0f) return vec4(0.0f);
+  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
   float mu_c = 0.5f * (1.0f + mu_edge);
   float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
   float multiple = 0.0f;
   float reflected =
       lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_c_out, eta, multiple);
-  vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
-  vec3 p = a_in * t_c * (1.0f - reflected);
-  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * reflected;
-  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
+  t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
+  float turn = LAMINA_TRAP_SPREAD * atan(params[entries[i].first].m);
+  return vec4(lamina_acos(mu_edge), lamina_acos(2.0f * mu_edge / 3.0f), turn, reflected);
 }
 
 // The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
@@ -580,6 +594,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.forward = vec3(0.0f);
     p.grid = vec2(0.0f);
     p.cone_grid = vec2(0.0f);
+    p.trap = vec4(0.0f);
+    p.trap_medium = vec3(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -613,6 +629,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     // Only a layer over a conductor traps light: its quadrature is not spent on the others.
     if (lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(params[entries[i].first].m, max(params[i].eta, 1.0f));
+      params[i].trap = lamina_trap_resolve(entries, params, i, params[i].trap_medium);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }
     if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
