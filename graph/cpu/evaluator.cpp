@@ -269,8 +269,18 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
   // The selection at wo is the same for every point: computed once.
   Selection s;
   q.select(wo, s);
-  // Stratified over lobes: lobe j's share is weight_j times the mean of f cos / pdf over its own
-  // samples, where pdf is the full mixture density; the shares add up to the integral.
+  // Every lobe's sampler and a cosine-weighted one, each on its own Hammersley set, weighed as the
+  // mixture p = (1 - a) pdf + a cos / pi (pdf: the lobe selection's mixture; the balance
+  // heuristic). Technique t's share is its weight times the mean of f cos / p over its points; the
+  // shares add up to the integral. The cosine technique covers what no lobe samples: the
+  // energy-conserving model's light leaving far from every lobe (a coat's trapped light over a
+  // smooth metal), which the lobes alone reach only with rare huge weights. Without it
+  // christmas_orb at 80 degrees read 0.68 in red for 0.86.
+  constexpr float kCosineShare = 0.25f;
+  const auto weight_of = [&](vec3 wi, vec3 f, float lobe_pdf) {
+    const float p = (1.0f - kCosineShare) * lobe_pdf + kCosineShare * wi.z * k::LAMINA_INV_PI;
+    return p > 0.0f ? f * wi.z / p : vec3(0.0f);
+  };
   vec3 total(0.0f);
   float lo = 0.0f;
   for (int entry : evaluator_->lobe_entry_) {
@@ -284,11 +294,16 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
     for (int i = 0; i < points_per_lobe; ++i) {
       const Sample sample =
           q.draw(s, entry, wo, hammersley(uint32_t(i), uint32_t(points_per_lobe)), evaluator_->entry_lobe_);
-      if (sample.pdf > 0.0f) sum += sample.f * sample.wi.z / sample.pdf;
+      if (sample.pdf > 0.0f) sum += weight_of(sample.wi, sample.f, sample.pdf);
     }
-    total += w * sum / float(points_per_lobe);
+    total += (1.0f - kCosineShare) * w * sum / float(points_per_lobe);
   }
-  return total;
+  vec3 sum(0.0f);
+  for (int i = 0; i < points_per_lobe; ++i) {
+    const vec3 wi = k::sample_cosine(hammersley(uint32_t(i), uint32_t(points_per_lobe)));
+    if (wi.z > 0.0f) sum += weight_of(wi, q.eval(wi, wo), q.pdf(s, wi, wo));
+  }
+  return total + kCosineShare * sum / float(points_per_lobe);
 }
 
 // --- single queries ----------------------------------------------------------------------------------

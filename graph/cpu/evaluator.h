@@ -63,7 +63,8 @@ class ShadingPoint {
   // u: two uniform numbers for the lobe's direction; u_lobe: one for choosing the lobe.
   Sample sample(glm::vec3 wo, glm::vec2 u, float u_lobe) const;
   // Directional albedo: the integral of f cos(theta_i) over the hemisphere, by deterministic
-  // quadrature: each lobe's sampler driven by a Hammersley point set, combined as the mixture.
+  // quadrature: each lobe's sampler and a cosine-weighted one driven by Hammersley point sets,
+  // combined as their mixture.
   glm::vec3 albedo(glm::vec3 wo, int points_per_lobe = 1024) const;
   // The lobe selection probabilities at wo (they sum to 1; all 0 when wo is below the horizon).
   std::vector<float> lobe_weights(glm::vec3 wo) const;

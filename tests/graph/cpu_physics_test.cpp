@@ -280,7 +280,6 @@ const std::map<std::string, double>& documented_excess() {
       {"checker_tiles", 2.041 * 1.03},        // 0 deg, R, on a gold square
       {"christmas_orb", 1.846 * 1.03},        // 0 deg, R
       {"concrete_ball", 1.138 * 1.03},        // 89 deg, B
-      {"fabric", 1.007 * 1.03},               // 89 deg, R
       {"gold_metallic_paint", 1.978 * 1.03},  // 0 deg, R
       {"gold_paint", 1.570 * 1.03},           // 0 deg, R
       {"house_paint", 1.199 * 1.03},          // 89 deg, B
@@ -300,9 +299,9 @@ const std::map<std::string, double>& documented_excess() {
 }
 
 // A material without a documented excess may reach at most 1 + this, on an estimate accurate to
-// about 0.3%: where the default quadrature (1024 points per lobe, up to 3% low at grazing
-// incidence, see the next test) reads above kRefineAbove, Evaluator::albedo is computed again
-// with kRefinedPoints per lobe.
+// about 0.1%: where the default quadrature (1024 points per lobe, within 0.3% of an adaptive one,
+// see the next test) reads above kRefineAbove, Evaluator::albedo is computed again with
+// kRefinedPoints per lobe.
 constexpr double kUndocumentedTolerance = 0.005;
 constexpr double kRefineAbove = 0.95;
 constexpr int kRefinedPoints = 16384;
@@ -413,8 +412,9 @@ TEST_CASE("every example's white furnace albedo at 0..89 deg is non-negative and
 TEST_CASE("Evaluator::albedo agrees with an adaptive quadrature of f cos") {
   // Independent of the evaluator's sampling: the adaptive quadrature of the chi-square test on
   // 20 x 40 cells of the hemisphere, per channel, refined around the mirror direction. With its
-  // default 1024 points per lobe Evaluator::albedo is within about 1% (blue_metallic at 85 deg:
-  // 1.2% low in blue, converging to the quadrature's value with more points).
+  // default 1024 points per lobe Evaluator::albedo is within 0.3% (schlick_gold and gold_paint at
+  // 60 deg). On the lobes' samplers alone, without its cosine-weighted points, it was 1.2% low for
+  // blue_metallic at 85 deg and up to 28% low for the energy-conserving model over a smooth metal.
   const std::vector<double> angles =
       test::kSanitized ? std::vector<double>{85.0} : std::vector<double>{0.0, 60.0, 85.0};
   std::vector<std::vector<double>> differences(examples().size());
@@ -447,7 +447,7 @@ TEST_CASE("Evaluator::albedo agrees with an adaptive quadrature of f cos") {
     report += "  " + examples()[index].name + ":";
     for (size_t a = 0; a < angles.size(); ++a) {
       CAPTURE(angles[a]);
-      CHECK(differences[index][a] <= 0.02);
+      CHECK(differences[index][a] <= 0.006);
       char text[60];
       std::snprintf(text, sizeof text, " %.0f deg %.2g", angles[a], differences[index][a]);
       report += text;
