@@ -140,27 +140,30 @@ TEST_CASE("a lossless stack with a boundary down to a lower index reflects nearl
   }
 }
 
-TEST_CASE("a coat over a narrow-lobed metal keeps the light the metal traps just beyond the exit cone") {
-  // schlick_gold (a 10-degree coat of index 1.5 over 8-degree gold): between 60 and 80 degrees the
-  // metal sends part of what it reflects just beyond the coat's critical angle, whence it soon
+TEST_CASE("a coat over a metal follows the light the metal traps from where the metal's lobe puts it") {
+  // gold_metallic_paint (a 1-degree coat of index 1.85 over 13-degree gold): from 40 to 70 degrees
+  // the metal sends much of what it reflects just beyond the coat's critical angle, whence it soon
   // returns into the cone. Followed at the mean cosine of light spread evenly outside the cone, it
-  // was as good as lost: 9.2% to 11.9% below the reference there; at the cosine where the lobe puts
-  // it, within 7.0%.
-  std::string text = test::read_file(test::source_dir() / "tests" / "data" / "physics" / "schlick_gold.json");
+  // was largely lost: 5.6% to 8.3% below the reference there; from where the lobe puts it, within
+  // 2%.
+  std::string text = test::read_file(test::source_dir() / "examples" / "materials" / "gold_metallic_paint.json");
   text = glsl::replace_all(text, R"("surface")", R"("model": "energy_conserving", "surface")");
   cpu::Evaluator e = test::evaluator_from_text(text);
   REQUIRE(e.program().model == kernels::LAMINA_MODEL_ENERGY_CONSERVING);
   const cpu::ShadingPoint point = e.bind(ShadingContext{});
   cpu::ReferenceOptions options;
   options.walks = test::kSanitized ? 1 << 13 : 1 << 16;
-  for (double theta : {60.0, 70.0, 75.0}) {
+  for (double theta : {40.0, 50.0, 60.0, 70.0}) {
     const vec3 wo = test::to_float(test::spherical(test::radians(theta), 0.0));
-    const double model = double(point.albedo(wo, 16384).x);
+    const vec3 model = point.albedo(wo, 16384);
     const cpu::ReferenceEstimate reference = cpu::reference_albedo(point, wo, options);
-    CAPTURE(theta);
-    CAPTURE(model);
-    CAPTURE(reference.value.x);
-    CHECK(std::abs(model / double(reference.value.x) - 1.0) < 0.08);
+    for (int c = 0; c < 3; ++c) {
+      CAPTURE(theta);
+      CAPTURE(c);
+      CAPTURE(model[c]);
+      CAPTURE(reference.value[c]);
+      CHECK(std::abs(double(model[c]) / double(reference.value[c]) - 1.0) < 0.04);
+    }
   }
 }
 
