@@ -10,6 +10,7 @@
 #include "graph/limits.h"
 #include "graph/load.h"
 #include "graph/lowering.h"
+#include "nodes/kernels/kernels.h"
 
 namespace lamina {
 
@@ -27,7 +28,7 @@ class Compiler final : public InputSource {
     program_.name = g_.material().name;
     program_.source_file = file_;
     program_.clamp_lower_roughness = g_.material().clamp_lower_roughness.value_or(true);
-    program_.model = g_.material().model.value_or("weidlich_wilkie") == "energy_conserving" ? 1 : 0;
+    program_.model = model_number(g_.material().model.value_or("weidlich_wilkie"));
     for (size_t i : g_.topological_order()) {
       if (!g_.used(i)) continue;
       NodeKind kind = g_.decl(i).kind;
@@ -174,6 +175,12 @@ Program compile(const Document& document, std::string_view material) {
   CheckedFile checked = check_text(write_document(single), document.path, document.policy);
   if (!checked.ok()) throw Error(checked.diagnostics.errors());
   return compile(*checked.graphs[0], document.path, checked.document.policy);
+}
+
+int model_number(std::string_view name) {
+  if (name == "weidlich_wilkie") return kernels::LAMINA_MODEL_WEIDLICH_WILKIE;
+  if (name == "energy_conserving") return kernels::LAMINA_MODEL_ENERGY_CONSERVING;
+  return -1;
 }
 
 }  // namespace lamina

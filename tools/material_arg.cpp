@@ -16,6 +16,10 @@ namespace lamina::cli {
 void add_material_options(CLI::App& cmd, MaterialArg& arg) {
   cmd.add_option("file", arg.file, "a material file")->required();
   cmd.add_option("-m,--material", arg.material, "the material's name (may be omitted when the file has only one)");
+  cmd.add_option("--model", arg.model,
+                 "compose the stack in this model instead of the material's own \"model\": weidlich_wilkie or "
+                 "energy_conserving")
+      ->check(CLI::IsMember({"weidlich_wilkie", "energy_conserving"}));
   add_input_options(cmd, arg.input_options);
 }
 
@@ -64,6 +68,7 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
     if (!graph) throw std::logic_error("load_programs: a valid file without a graph for " + names[index]);
     try {
       out.push_back(compile(*graph, arg.file, checked.document.policy));
+      if (!arg.model.empty()) out.back().model = model_number(arg.model);
     } catch (const IoError& e) {
       print_problem(e.what());
       return kExitIo;

@@ -17,10 +17,12 @@ namespace lamina::cli {
 struct MaterialArg {
   std::string file;
   std::string material;  // empty: the file's only material
+  std::string model;     // --model: evaluate in this model instead of each material's own
   InputOptions input_options;
 };
 
-// Adds the positional FILE (required), --material NAME and the input options to `cmd`.
+// Adds the positional FILE (required), --material NAME, --model NAME and the input options to
+// `cmd`.
 void add_material_options(CLI::App& cmd, MaterialArg& arg);
 
 // Reads and checks the file, finds the material, compiles it and builds its evaluator. On failure

@@ -15,6 +15,8 @@
 #include "graph/cpu/evaluator.h"
 #include "graph/cpu/image.h"
 #include "graph/cpu/reference.h"
+#include "graph/cpu_test_support.h"
+#include "graph/glsl/glsl_text.h"
 #include "graph/load.h"
 #include "test_support.h"
 
@@ -142,6 +144,39 @@ TEST_CASE("lamina albedo prints the library's directional albedo and rejects the
     CHECK(bad.exit_code == 2);
     CHECK(bad.out.empty());
   }
+}
+
+TEST_CASE(
+    "the --model option composes the stack in the model named instead of the material's own, and refuses others") {
+  // car_paint names no model: each --model gives what a copy of it naming that model gives.
+  const std::string text = test::read_file(test::source_dir() / kCarPaint);
+  REQUIRE(text.find("\"model\"") == std::string::npos);
+  const glm::vec3 wo = glm::normalize(glm::vec3(0.5f, 0.0f, 0.5f));
+  std::set<float> reds;
+  for (const std::string model : {"weidlich_wilkie", "energy_conserving"}) {
+    CAPTURE(model);
+    const std::string copy = glsl::replace_all(text, R"("surface")", "\"model\": \"" + model + "\", \"surface\"");
+    const glm::vec3 expected = test::evaluator_from_text(copy).albedo(ShadingContext{}, wo);
+    for (const std::string command : {"albedo", "eval"}) {
+      const std::string query = command == "albedo" ? " --theta 45" : " --wi 0,0,1 --wo 1,0,1";
+      auto r = test::run_cli(command + " " + kCarPaint + query + " --json --model " + model, test::source_dir());
+      INFO(r.err);
+      REQUIRE(r.exit_code == 0);
+      auto report = nlohmann::json::parse(r.out);
+      if (command == "albedo") {
+        for (int c = 0; c < 3; ++c) CHECK(report["albedo"][c].get<float>() == expected[c]);
+      } else {
+        const glm::vec3 f = test::evaluator_from_text(copy).eval(ShadingContext{}, glm::vec3(0.0f, 0.0f, 1.0f), wo);
+        for (int c = 0; c < 3; ++c) CHECK(report["f"][c].get<float>() == f[c]);
+      }
+    }
+    reds.insert(expected.x);
+  }
+  CHECK(reds.size() == 2);  // the two models differ here, so the option was not ignored
+  auto bad = test::run_cli(std::string("albedo ") + kCarPaint + " --theta 45 --model conserving", test::source_dir());
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.out.empty());
+  CHECK(bad.err.find("--model") != std::string::npos);
 }
 
 TEST_CASE("lamina plot writes the same PNG of the requested size every time and nothing for an invalid file") {
