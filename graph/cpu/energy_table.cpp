@@ -114,7 +114,7 @@ int dielectric_albedo_table_entry(int combo, int i, int j, int k_) {
 int conductor_cone_table_entry(int combo, int i, int j, int k_) {
   const float eta = k::lamina_albedo_node_eta(i);
   const float cone_cosine = eta > 1.0f ? std::sqrt(1.0f - 1.0f / (eta * eta)) : 0.0f;
-  const double c = conductor_cone_quadrature(combo / 2, k::lamina_albedo_node_cosine(k_, 1.0f),
+  const double c = conductor_cone_quadrature(combo / 2, k::lamina_cone_axis_cosine(float(k_), std::max(eta, 1.0f)),
                                              k::lamina_albedo_node_slope(j), cone_cosine, kAlbedoTableStrata);
   return int(std::clamp(std::floor(c * 65535.0), 0.0, 65535.0));
 }

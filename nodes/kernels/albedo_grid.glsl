@@ -21,7 +21,8 @@ const int LAMINA_ALBEDO_COMBOS = 6;  // distributions (beckmann, blinn, ggx) x F
 // boundary's microsurface reflects beyond E (energy.glsl), on the same grid; and from column
 // LAMINA_ALBEDO_CONE_COLUMN, C, the share of a conductor lobe of the combination's distribution
 // that leaves inside the exit cone of a boundary of index eta above it (energy.glsl), on the same
-// grid where eta >= 1 (the rows under 1 hold the whole hemisphere's, as at eta = 1); and from columns
+// eta and slope axes where eta >= 1 (the rows under 1 hold the whole hemisphere's, as at eta = 1)
+// and a cosine axis of its own, aligned with the cone (lamina_cone_axis); and from columns
 // LAMINA_ALBEDO_PATH_COLUMN and LAMINA_ALBEDO_DEPTH_COLUMN, P and Q, how long the path is that the
 // light the boundary lets through takes in the medium below (energy.glsl, lamina_rough_transmittance),
 // as ratios r of cosines stored as round(65535 r / LAMINA_ALBEDO_PATH_RANGE) (under an index below 1,
@@ -63,6 +64,30 @@ LAMINA_FN float lamina_albedo_grid_cosine(float w, float eta) {
   float z = max(lamina_sqr(w / float(LAMINA_ALBEDO_COSINES - 1)), 0.001f);
   if (eta >= 1.0f) return z;
   return sqrt(1.0f - eta * eta * (1.0f - z * z));
+}
+// Block C's cosine axis at a node of index eta_n >= 1, aligned with its exit cone: node
+// LAMINA_CONE_EDGE_NODE lies on the cone's edge; the nodes above it at the square root of the
+// cosine outside the boundary, evenly, so that they crowd toward the edge, where a narrow lobe's
+// share steps from 0 to 1 (on the plain cosine axis the step fell inside a cell, whose ramp read a
+// smooth metal's mirror direction well inside the cone as partly outside); the nodes below it
+// evenly in u from the edge (1) to grazing (eta_n). The argument is u = eta sin(theta), the sine
+// outside the boundary: the composition reads both eta nodes around a boundary at its own u.
+const int LAMINA_CONE_EDGE_NODE = 8;
+LAMINA_FN float lamina_cone_axis(float u, float eta_n) {
+  float above = float(LAMINA_ALBEDO_COSINES - 1 - LAMINA_CONE_EDGE_NODE);
+  float inside = float(LAMINA_CONE_EDGE_NODE) + sqrt(lamina_safe_sqrt(1.0f - min(u * u, 1.0f))) * above;
+  float beyond = float(LAMINA_CONE_EDGE_NODE) * clamp((eta_n - u) / max(eta_n - 1.0f, 1.0e-6f), 0.0f, 1.0f);
+  return u <= 1.0f ? inside : beyond;
+}
+// Its inverse, for the table's generator: the cosine under a boundary of index eta_n >= 1 at node
+// coordinate w (at least 0.001, as on the other axis).
+LAMINA_FN float lamina_cone_axis_cosine(float w, float eta_n) {
+  float edge = float(LAMINA_CONE_EDGE_NODE);
+  float s = max(w - edge, 0.0f) / float(LAMINA_ALBEDO_COSINES - 1 - LAMINA_CONE_EDGE_NODE);
+  float u_inside = lamina_safe_sqrt(1.0f - lamina_sqr(s * s));
+  float u_beyond = eta_n - (w / edge) * (eta_n - 1.0f);
+  float sine = min((w >= edge ? u_inside : u_beyond) / eta_n, 1.0f);
+  return max(lamina_safe_sqrt(1.0f - sine * sine), 0.001f);
 }
 LAMINA_FN float lamina_albedo_node_eta(int i) { return lamina_albedo_grid_eta(float(i)); }
 LAMINA_FN float lamina_albedo_node_slope(int j) { return lamina_albedo_grid_slope(float(j)); }

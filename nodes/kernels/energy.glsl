@@ -176,36 +176,33 @@ LAMINA_FN vec3 lamina_rough_transmittance(vec3 sigma, float thickness, float mu_
 // hemisphere (the row eta = 1, the middle node of the eta axis: one grid point serves both). A
 // conductor reflects F(mu) times about as much (F at the mirror direction's V.H, mu itself). 0 for a
 // distribution the module has no table for.
-// Between the two eta nodes the share is interpolated along one direction outside the boundary,
-// not at one cosine: each node is read at the cosine whose sine times its eta is the view's sine
-// times eta (beyond the cone, where there is no such direction, the same proportion of the way
-// from the edge toward eta_node / eta). Where a narrow lobe's share steps from 0 to 1 at the
-// cone's edge, the edge then lies at the same place on both nodes; read at one cosine, the step of
-// one node was blended with the other's at another cosine, and a smooth metal's mirror direction
-// well inside the cone read up to 12% outside it, which the composition returned as trapped light
-// on top of the peak that carries it (a smooth coat over a smooth metal reflected 1.15 at 70
-// degrees).
+// Block C at eta node i, interpolated in the slope (node j, fraction fy) and at coordinate z of
+// its cosine axis (lamina_cone_axis).
+LAMINA_FN float lamina_cone_block_at(int first, int i, int j, float fy, float z) {
+  int k = min(int(z), LAMINA_ALBEDO_COSINES - 2);
+  float fz = z - float(k);
+  int b = LAMINA_ALBEDO_CONE_COLUMN;
+  float c0 = mix(lamina_albedo_entry(first, b, i, j, k), lamina_albedo_entry(first, b, i, j, k + 1), fz);
+  float c1 = mix(lamina_albedo_entry(first, b, i, j + 1, k), lamina_albedo_entry(first, b, i, j + 1, k + 1), fz);
+  return mix(c0, c1, fy);
+}
+
+// Both eta nodes are read at the boundary's own u = eta sin(theta), the sine outside it, on their
+// cone-aligned axes: the cone's edge, where a narrow lobe's share steps from 0 to 1, lies on a node
+// of each. (Read at one cosine on a plain cosine axis, the step of each node was spread over a
+// cell and blended with the other's at another cosine: a smooth metal's mirror direction well
+// inside the cone read up to 25% outside it, which the composition returned as trapped light on
+// top of the peak that carries it, and a smooth coat over a smooth metal reflected 1.15 at 70
+// degrees.)
 LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, float mu, LAMINA_OUT(float) whole) {
   LaminaAlbedoPoint p = lamina_albedo_point_at(distribution, 0, xy, mu, 1.0f);
   whole = 0.0f;
   if (p.first < 0) return 0.0f;
-  float eta = lamina_albedo_grid_eta(xy.x);
-  float sine2 = 1.0f - lamina_sqr(clamp(mu, 0.0f, 1.0f));
-  float inside = 0.0f;
-  for (int n = 0; n < 2; ++n) {
-    float ratio = eta / lamina_albedo_grid_eta(float(p.i + n));
-    float z = sqrt(lamina_safe_sqrt(1.0f - min(sine2 * ratio * ratio, 1.0f))) * float(LAMINA_ALBEDO_COSINES - 1);
-    int k = min(int(z), LAMINA_ALBEDO_COSINES - 2);
-    float fz = z - float(k);
-    int b = LAMINA_ALBEDO_CONE_COLUMN;
-    float c0 = mix(lamina_albedo_entry(p.first, b, p.i + n, p.j, k),
-                   lamina_albedo_entry(p.first, b, p.i + n, p.j, k + 1), fz);
-    float c1 = mix(lamina_albedo_entry(p.first, b, p.i + n, p.j + 1, k),
-                   lamina_albedo_entry(p.first, b, p.i + n, p.j + 1, k + 1), fz);
-    inside += (n == 0 ? 1.0f - p.fx : p.fx) * mix(c0, c1, p.fy);
-  }
-  p.i = (LAMINA_ALBEDO_ETAS - 1) / 2;
-  p.fx = 0.0f;
-  whole = lamina_albedo_interpolate(p, LAMINA_ALBEDO_CONE_COLUMN);
-  return clamp(inside, 0.0f, 1.0f);
+  float sine = lamina_safe_sqrt(1.0f - lamina_sqr(clamp(mu, 0.0f, 1.0f)));
+  float u = lamina_albedo_grid_eta(xy.x) * sine;
+  float below = lamina_cone_block_at(p.first, p.i, p.j, p.fy, lamina_cone_axis(u, lamina_albedo_node_eta(p.i)));
+  float above = lamina_cone_block_at(p.first, p.i + 1, p.j, p.fy, lamina_cone_axis(u, lamina_albedo_node_eta(p.i + 1)));
+  whole = clamp(lamina_cone_block_at(p.first, (LAMINA_ALBEDO_ETAS - 1) / 2, p.j, p.fy, lamina_cone_axis(sine, 1.0f)),
+                0.0f, 1.0f);
+  return clamp(mix(below, above, p.fx), 0.0f, 1.0f);
 }

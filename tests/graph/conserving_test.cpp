@@ -200,18 +200,13 @@ TEST_CASE("a rough coat over black reflects what the reference's multiply scatte
   }
 }
 
-// A known failure, kept so that it turns red once fixed: from about 58 degrees on, this stack's model
-// reflects more than the two mirrors do, and more than it receives (1.03 at 60 degrees, 1.15 at 70).
-// Its peaks carry the series; on top, its forward part returns "trapped" light the metal cannot
-// trap, as its mirror direction lies well inside the cone: the cone share C read from the table,
-// interpolated across the edge where a smooth lobe's C steps from 0 to 1, falls short of 1 near the
-// edge. Evaluator::albedo missed it until it drew cosine-weighted points too: the lobes' samplers
-// never go where the forward part is (their pdf is 0 there). See the README's "What remains".
-TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its two parallel mirrors" *
-          doctest::should_fail()) {
+TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its two parallel mirrors") {
   // Light enters with 1 - F(mu), the metal reflects R(mu') at the refracted cosine, the coat sends
   // F(mu) of it back down and lets 1 - F(mu) out, every round trip along the same direction:
-  // F + (1 - F)^2 R / (1 - F R). Without the echo the model reflects F + (1 - F)^2 R.
+  // F + (1 - F)^2 R / (1 - F R). Without the echo the model reflects F + (1 - F)^2 R. From 58
+  // degrees on, before block C had a cosine axis aligned with the exit cone, the model read part of
+  // the metal's mirror direction as outside the cone and also returned it as trapped light: 1.03 at
+  // 60 degrees, 1.15 at 70, more than it receives; lobe samplers alone never saw it (pdf 0 there).
   const double eta = 1.5;
   const std::complex<double> silver(0.155, 3.6);  // absolute; relative to the coat below
   cpu::Evaluator e =
