@@ -344,7 +344,7 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
 // wide lobe approaches. (That mean alone, for every lobe, left the light a lobe traps just beyond
 // the edge, which soon returns into the cone, largely lost: gold_metallic_paint 5.6% to 8.3% low
 // between 40 and 70 degrees, within 2% with the trap's own angle. A narrow lobe under a smooth coat
-// now returns too much of it at grazing views: silver_paint 9.6% high at 89 degrees.)
+// now returns too much of it at grazing views: silver_paint 9.5% high at 89 degrees.)
 const float LAMINA_TRAP_SPREAD = 1.13f;
 LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_start) {

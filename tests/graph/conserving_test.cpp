@@ -215,7 +215,7 @@ TEST_CASE("a smooth clear coat over a smooth metal reflects the series of its tw
     {"id": "coat", "type": "layer", "interface": "@glass", "base": "@metal"},
     {"id": "glass", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 0.0},
     {"id": "metal", "type": "substrate/conductor", "n": [0.155, 0.155, 0.155], "k": [3.6, 3.6, 3.6], "roughness_deg": 0.0}]}]})");
-  for (double theta : {0.0, 20.0, 40.0, 60.0, 70.0}) {
+  for (double theta : {0.0, 20.0, 40.0, 60.0, 70.0, 80.0, 85.0}) {
     const double mu = std::cos(test::radians(theta));
     const double mu_below = std::sqrt(1.0 - (1.0 - mu * mu) / (eta * eta));
     const double f = test::fresnel_reference(mu, eta);
