@@ -25,7 +25,7 @@ for file in examples/materials/*.json tests/data/physics/*.json; do
   [[ $file == tests/* ]] && kind=test
   "$lamina" compare "$file" --model "$model" --json >"$work/$name.compare.json"
   # The class as `lamina classify` reads the structure: its second column, up to the reason.
-  "$lamina" classify "$file" | head -1 | sed -E 's/^[^ ]+ +//; s/  +.*//' >"$work/$name.class"
+  "$lamina" classify "$file" | sed -nE '1{s/^[^ ]+ +//; s/  +.*//; p}' >"$work/$name.class"
   printf '%s %s\n' "$name" "$kind" >>"$work/list"
 done
 node - "$work" "$model" <<'JS'

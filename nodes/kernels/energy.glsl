@@ -191,7 +191,7 @@ LAMINA_FN float lamina_cone_block_at(int first, int i, int j, float fy, float z)
 // cone-aligned axes: the cone's edge, where a narrow lobe's share steps from 0 to 1, lies on a node
 // of each. (Read at one cosine on a plain cosine axis, the step of each node was spread over a
 // cell and blended with the other's at another cosine: a smooth metal's mirror direction well
-// inside the cone read up to 25% outside it, which the composition returned as trapped light on
+// inside the cone read as partly outside it, which the composition returned as trapped light on
 // top of the peak that carries it, and a smooth coat over a smooth metal reflected 1.15 at 70
 // degrees.)
 LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, float mu, LAMINA_OUT(float) whole) {
