@@ -247,6 +247,7 @@ class MaterialEmitter final : public OpWriter {
           << at << "forward = " << vec3_literal(q.forward) << ";\n"
           << at << "grid = " << vec2_literal(q.grid) << ";\n"
           << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
+          << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
           << at << "trap = " << vec4_literal(q.trap) << ";\n"
           << at << "trap_medium = " << vec3_literal(q.trap_medium) << ";\n";
       }

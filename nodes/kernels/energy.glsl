@@ -187,22 +187,34 @@ LAMINA_FN float lamina_cone_block_at(int first, int i, int j, float fy, float z)
   return mix(c0, c1, fy);
 }
 
+// What block C's reads need of a boundary's grid coordinates xy that no direction changes: the
+// boundary's index on the grid and the indices of the two eta nodes around it. A shading point
+// fixes them (LaminaParams.cone_etas), so a lookup computes only its direction's coordinates.
+LAMINA_FN vec3 lamina_cone_etas(vec2 xy) {
+  int i = min(int(xy.x), LAMINA_ALBEDO_ETAS - 2);
+  return vec3(lamina_albedo_grid_eta(xy.x), lamina_albedo_node_eta(i), lamina_albedo_node_eta(i + 1));
+}
+
 // Both eta nodes are read at the boundary's own u = eta sin(theta), the sine outside it, on their
 // cone-aligned axes: the cone's edge, where a narrow lobe's share steps from 0 to 1, lies on a node
 // of each. (Read at one cosine on a plain cosine axis, the step of each node was spread over a
 // cell and blended with the other's at another cosine: a smooth metal's mirror direction well
 // inside the cone read as partly outside it, which the composition returned as trapped light on
 // top of the peak that carries it, and a smooth coat over a smooth metal reflected 1.15 at 70
-// degrees.)
-LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, float mu, LAMINA_OUT(float) whole) {
-  LaminaAlbedoPoint p = lamina_albedo_point_at(distribution, 0, xy, mu, 1.0f);
+// degrees.) etas is lamina_cone_etas(xy).
+LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, vec3 etas, float mu, LAMINA_OUT(float) whole) {
+  int first = LAMINA_DIELECTRIC_ALBEDO_FIRST_ROW[lamina_albedo_combo(distribution, 0)];
   whole = 0.0f;
-  if (p.first < 0) return 0.0f;
+  if (first < 0) return 0.0f;
+  int i = min(int(xy.x), LAMINA_ALBEDO_ETAS - 2);
+  int j = min(int(xy.y), LAMINA_ALBEDO_SLOPES - 2);
+  float fx = xy.x - float(i);
+  float fy = xy.y - float(j);
   float sine = lamina_safe_sqrt(1.0f - lamina_sqr(clamp(mu, 0.0f, 1.0f)));
-  float u = lamina_albedo_grid_eta(xy.x) * sine;
-  float below = lamina_cone_block_at(p.first, p.i, p.j, p.fy, lamina_cone_axis(u, lamina_albedo_node_eta(p.i)));
-  float above = lamina_cone_block_at(p.first, p.i + 1, p.j, p.fy, lamina_cone_axis(u, lamina_albedo_node_eta(p.i + 1)));
-  whole = clamp(lamina_cone_block_at(p.first, (LAMINA_ALBEDO_ETAS - 1) / 2, p.j, p.fy, lamina_cone_axis(sine, 1.0f)),
-                0.0f, 1.0f);
-  return clamp(mix(below, above, p.fx), 0.0f, 1.0f);
+  float u = etas.x * sine;
+  float below = lamina_cone_block_at(first, i, j, fy, lamina_cone_axis(u, etas.y));
+  float above = lamina_cone_block_at(first, i + 1, j, fy, lamina_cone_axis(u, etas.z));
+  whole = clamp(lamina_cone_block_at(first, (LAMINA_ALBEDO_ETAS - 1) / 2, j, fy, lamina_cone_axis(sine, 1.0f)), 0.0f,
+                1.0f);
+  return clamp(mix(below, above, fx), 0.0f, 1.0f);
 }

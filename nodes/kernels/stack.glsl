@@ -237,6 +237,7 @@ struct LaminaParams {
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
+  vec3 cone_etas;   // with the indices it reads there (lamina_cone_etas)
   vec4 trap;        // and what lamina_trap_gain needs that no direction changes (lamina_trap_resolve)
   vec3 trap_medium;
 };
@@ -323,7 +324,8 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   int b = max(entries[i].first, 0);
   vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
   float whole = 0.0f;
-  float inside = lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, mu, whole);
+  float inside =
+      lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
   a_all = f * whole;
   return f * inside;
 }
@@ -595,6 +597,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.forward = vec3(0.0f);
     p.grid = vec2(0.0f);
     p.cone_grid = vec2(0.0f);
+    p.cone_etas = vec3(0.0f);
     p.trap = vec4(0.0f);
     p.trap_medium = vec3(0.0f);
     int kind = entries[i].kind;
@@ -630,6 +633,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     // Only a layer over a conductor traps light: its quadrature is not spent on the others.
     if (lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(params[entries[i].first].m, max(params[i].eta, 1.0f));
+      params[i].cone_etas = lamina_cone_etas(params[i].cone_grid);
       params[i].trap = lamina_trap_resolve(entries, params, i, params[i].trap_medium);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }

@@ -332,10 +332,12 @@ TEST_CASE("the conductor cone quadrature agrees with a plain integration over th
             doctest::Approx(plain).epsilon(3.0e-3));
       // And the table, read as the composition reads it, within its interpolation.
       float whole = 0.0f, unused = 0.0f;
-      CHECK(double(k::lamina_conductor_cone_share(distribution, k::lamina_albedo_grid_xy(m, std::max(eta, 1.0f)), mu,
-                                                  whole)) == doctest::Approx(plain).epsilon(0.03));
+      const glm::vec2 xy = k::lamina_albedo_grid_xy(m, std::max(eta, 1.0f));
+      CHECK(double(k::lamina_conductor_cone_share(distribution, xy, k::lamina_cone_etas(xy), mu, whole)) ==
+            doctest::Approx(plain).epsilon(0.03));
       // The whole hemisphere's share is the row eta = 1's.
-      CHECK(whole == k::lamina_conductor_cone_share(distribution, k::lamina_albedo_grid_xy(m, 1.0f), mu, unused));
+      const glm::vec2 xy_1 = k::lamina_albedo_grid_xy(m, 1.0f);
+      CHECK(whole == k::lamina_conductor_cone_share(distribution, xy_1, k::lamina_cone_etas(xy_1), mu, unused));
     }
   }
 }

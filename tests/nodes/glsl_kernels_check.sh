@@ -132,7 +132,8 @@ void main() {
   s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo) + echo + lamina_trap_gain(entries, params, 0, c);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
   float whole = 0.0f;
-  f += lamina_conductor_cone_share(1, lamina_albedo_grid_xy(m, 1.5f), c, whole) + whole;
+  f += lamina_conductor_cone_share(1, lamina_albedo_grid_xy(m, 1.5f), lamina_cone_etas(lamina_albedo_grid_xy(m, 1.5f)), c,
+                                   whole) + whole;
   f += lamina_albedo_point_at(0, 0, vec2(1.0f), c, 0.7f).fx;
   s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
