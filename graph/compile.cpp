@@ -10,6 +10,7 @@
 #include "graph/limits.h"
 #include "graph/load.h"
 #include "graph/lowering.h"
+#include "graph/model.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina {
@@ -28,7 +29,7 @@ class Compiler final : public InputSource {
     program_.name = g_.material().name;
     program_.source_file = file_;
     program_.clamp_lower_roughness = g_.material().clamp_lower_roughness.value_or(true);
-    program_.model = model_number(g_.material().model.value_or("weidlich_wilkie"));
+    program_.model = model_number(g_.material().model.value_or(std::string(kDefaultModel)));
     for (size_t i : g_.topological_order()) {
       if (!g_.used(i)) continue;
       NodeKind kind = g_.decl(i).kind;
@@ -175,12 +176,6 @@ Program compile(const Document& document, std::string_view material) {
   CheckedFile checked = check_text(write_document(single), document.path, document.policy);
   if (!checked.ok()) throw Error(checked.diagnostics.errors());
   return compile(*checked.graphs[0], document.path, checked.document.policy);
-}
-
-int model_number(std::string_view name) {
-  if (name == "weidlich_wilkie") return kernels::LAMINA_MODEL_WEIDLICH_WILKIE;
-  if (name == "energy_conserving") return kernels::LAMINA_MODEL_ENERGY_CONSERVING;
-  return -1;
 }
 
 }  // namespace lamina

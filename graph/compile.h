@@ -21,8 +21,4 @@ Program compile(const Graph& graph, const std::string& material_file);
 // for an invalid document or an unknown material name.
 Program compile(const Document& document, std::string_view material);
 
-// Program::model (LAMINA_MODEL_*) for a material's "model": "weidlich_wilkie" or
-// "energy_conserving"; -1 for any other name.
-int model_number(std::string_view name);
-
 }  // namespace lamina

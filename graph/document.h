@@ -35,8 +35,8 @@ struct Material {
   // Elek sec. 3: a point evaluation cannot blur a lower lobe seen through a rough upper
   // interface, so each interface's roughness is raised to at least the one above it.
   std::optional<bool> clamp_lower_roughness;  // default true
-  // How the stack is composed: "weidlich_wilkie", the seeds' model as they give it (the default for
-  // now), or "energy_conserving" (nodes/kernels/stack.glsl, LAMINA_MODEL_*).
+  // How the stack is composed (graph/model.h): "energy_conserving" when absent, or
+  // "weidlich_wilkie", the seeds' model as they give it (nodes/kernels/stack.glsl, LAMINA_MODEL_*).
   std::optional<std::string> model;
   Link surface;
   std::vector<Node> nodes;

@@ -9,6 +9,7 @@
 
 #include "graph/json_values.h"
 #include "graph/limits.h"
+#include "graph/model.h"
 #include "graph/number_text.h"
 
 namespace lamina {
@@ -159,9 +160,8 @@ class Reader {
     }
     m.notes = optional_string(j, pointer, "notes");
     m.model = optional_string(j, pointer, "model");
-    if (m.model && *m.model != "energy_conserving" && *m.model != "weidlich_wilkie") {
-      error(pointer + "/model", "unknown model " + quote_excerpt(*m.model),
-            "the models are \"weidlich_wilkie\" (the default) and \"energy_conserving\"");
+    if (m.model && model_number(*m.model) < 0) {
+      error(pointer + "/model", "unknown model " + quote_excerpt(*m.model), "the models are " + model_summary());
       m.model.reset();
     }
 

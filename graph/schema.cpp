@@ -8,6 +8,7 @@
 #include "graph/document.h"
 #include "graph/json_write.h"
 #include "graph/limits.h"
+#include "graph/model.h"
 #include "graph/number_text.h"
 #include "graph/param_schema.h"
 
@@ -137,11 +138,9 @@ std::string material_schema(const NodeRegistry& registry) {
                         "raise each interface's roughness to at least the one above it (Elek sec. 3); default true"},
                        {"type", "boolean"},
                        {"default", true}}},
-                 {"model", Json{{"description",
-                                 "how the stack is composed: weidlich_wilkie (the seeds' model as they give it) or "
-                                 "energy_conserving (never reflects more than it receives, reciprocal)"},
-                                {"enum", Json::array({"weidlich_wilkie", "energy_conserving"})},
-                                {"default", "weidlich_wilkie"}}},
+                 {"model", Json{{"description", "how the stack is composed: " + model_summary()},
+                                {"enum", model_names()},
+                                {"default", kDefaultModel}}},
                  {"surface", schema_ref("link")},
                  {"nodes", Json{{"type", "array"}, {"minItems", 1}, {"items", schema_ref("node")}}}}},
            {"required", Json::array({"name", "surface", "nodes"})},

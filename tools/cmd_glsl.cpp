@@ -1,5 +1,5 @@
-// lamina glsl FILE [--material NAME] [--target 330|450|es300] [--uniforms] [--shader sphere]
-//             [--interface FILE] -o OUT
+// lamina glsl FILE [--material NAME] [--model NAME] [--target 330|450|es300] [--uniforms]
+//             [--shader sphere] [--interface FILE] -o OUT
 // The material(s) as one GLSL module (graph/glsl/generator.h), plus a JSON side file describing
 // the uniform blocks, samplers and tables: with --uniforms, or when a material's model reads a
 // table, it is OUT with its extension replaced by .uniforms.json (car.glsl -> car.uniforms.json),
@@ -59,11 +59,12 @@ int run_glsl(const GlslOptions& o) {
   else if (needs_side && !to_stdout)
     side = default_side_file(o.output);
   if (needs_side && side.empty()) {
-    print_problem("glsl: " + o.material.file + ": " +
-                  (o.uniforms ? std::string("--uniforms")
-                              : "the module reads the dielectric albedo table (\"model\": \"energy_conserving\")") +
-                  " with -o - needs --interface FILE for the JSON side file the host binds from (the module goes to "
-                  "standard output)");
+    print_problem(
+        "glsl: " + o.material.file + ": with -o -, " +
+        (o.uniforms ? std::string("--uniforms") : "the dielectric albedo table the energy_conserving model reads") +
+        " needs --interface FILE for the JSON side file the host binds from (the module goes to standard "
+        "output)" +
+        (o.uniforms ? "" : "; the weidlich_wilkie model (--model weidlich_wilkie) reads no table"));
     return kExitInvalid;
   }
   if (!side.empty() && !to_stdout && side.lexically_normal() == fs::path(o.output).lexically_normal()) {
@@ -86,6 +87,7 @@ void add_glsl(CLI::App& app, Runner& runner) {
   auto* cmd = app.add_subcommand("glsl", "Compile materials to a GLSL module (eval, pdf and sample per material)");
   cmd->add_option("file", o->material.file, "a material file")->required();
   cmd->add_option("-m,--material", o->material.material, "only this material (default: every material in the file)");
+  add_model_option(*cmd, o->material);
   add_input_options(*cmd, o->material.input_options);
   cmd->add_option("-t,--target", o->target, "GLSL flavour: 330 (3.30 core), 450 (4.50 core), es300 (ES 3.00, WebGL2)")
       ->capture_default_str();

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Counts, with callgrind, the instructions one query of the CPU evaluator takes (inclusive of
-# everything it calls), for the benchmark's single lobe and two layered examples, or for the
-# material files given. Counts do not depend on the machine's load, unlike the times of
+# everything it calls), for the benchmark's single lobe and two layered examples in both models,
+# or for the material files given. Counts do not depend on the machine's load, unlike the times of
 # tools/run_bench.sh: compare builds with them.
 #   bash tools/count_instructions.sh [MATERIAL.json ...]
 set -euo pipefail
@@ -18,12 +18,22 @@ if ((${#materials[@]} == 0)); then
 {"format": 1, "materials": [{"name": "single_lobe", "surface": "@metal", "nodes": [
   {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0}]}]}
 JSON
-  materials=("$work/single_lobe.json" examples/materials/car_paint.json examples/materials/house_paint.json)
+  materials=("$work/single_lobe.json")
+  # Each example in the default model, then in the seeds' (a copy with "model" set).
+  for name in car_paint house_paint; do
+    node -e '
+      const fs = require("fs");
+      const d = JSON.parse(fs.readFileSync(process.argv[1], "utf8"));
+      d.materials[0].model = "weidlich_wilkie";
+      fs.writeFileSync(process.argv[2], JSON.stringify(d));' \
+      "examples/materials/$name.json" "$work/${name}_weidlich_wilkie.json"
+    materials+=("examples/materials/$name.json" "$work/${name}_weidlich_wilkie.json")
+  done
 fi
 queries=20000
-printf '%-24s %10s %10s %10s\n' "instructions per query" eval eval_pdf sample
+printf '%-28s %10s %10s %10s\n' "instructions per query" eval eval_pdf sample
 for m in "${materials[@]}"; do
-  row=$(printf '%-24s' "$(basename "$m" .json)")
+  row=$(printf '%-28s' "$(basename "$m" .json)")
   for q in eval eval_pdf sample; do
     valgrind --tool=callgrind --toggle-collect="lamina::cpu::Evaluator::$q(*" \
       --callgrind-out-file="$work/out" "$driver" "$m" "$q" "$queries" >/dev/null 2>"$work/log" ||

@@ -9,6 +9,7 @@
 
 #include "graph/compile.h"
 #include "graph/load.h"
+#include "graph/model.h"
 #include "tools/commands.h"
 
 namespace lamina::cli {
@@ -16,11 +17,14 @@ namespace lamina::cli {
 void add_material_options(CLI::App& cmd, MaterialArg& arg) {
   cmd.add_option("file", arg.file, "a material file")->required();
   cmd.add_option("-m,--material", arg.material, "the material's name (may be omitted when the file has only one)");
-  cmd.add_option("--model", arg.model,
-                 "compose the stack in this model instead of the material's own \"model\": weidlich_wilkie or "
-                 "energy_conserving")
-      ->check(CLI::IsMember({"weidlich_wilkie", "energy_conserving"}));
+  add_model_option(cmd, arg);
   add_input_options(cmd, arg.input_options);
+}
+
+void add_model_option(CLI::App& cmd, MaterialArg& arg) {
+  cmd.add_option("--model", arg.model,
+                 "compose the stack in this model instead of the material's own \"model\": " + model_summary())
+      ->check(CLI::IsMember(model_names()));
 }
 
 int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out) {

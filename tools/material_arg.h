@@ -24,6 +24,8 @@ struct MaterialArg {
 // Adds the positional FILE (required), --material NAME, --model NAME and the input options to
 // `cmd`.
 void add_material_options(CLI::App& cmd, MaterialArg& arg);
+// Adds only --model NAME (for commands that name their materials their own way).
+void add_model_option(CLI::App& cmd, MaterialArg& arg);
 
 // Reads and checks the file, finds the material, compiles it and builds its evaluator. On failure
 // prints the problem on stderr and returns the exit code, else returns kExitOk with `out` set:

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "graph/model.h"
 #include "tools/plot_canvas.h"
 #include "tools/plot_figure.h"
 #include "tools/plot_slices.h"
@@ -146,8 +147,7 @@ bool draw_comparison(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, con
 
   const Program& program = evaluator.program();
   const int margin = l.px(24);
-  const std::string model =
-      program.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "energy_conserving" : "weidlich_wilkie";
+  const std::string model(model_name(program.model));
   const std::string title = program.name + ": the " + model + " model against the reference solver";
   const int title_font = text.fit(title, l.font(30), width * 2 / 3, true);
   text.draw(margin, l.px(40), title, title_font, kText, -1, true);

@@ -160,10 +160,7 @@ class MaterialEmitter final : public OpWriter {
   // An untextured material in an inlined module: its parameters are constants, resolved here by
   // the kernels the CPU runs (to the bit), so the module holds them instead of their inputs.
   bool fixed() const { return !p_.textured() && !o_.uniforms; }
-  // The kernels' composition of the material's model, as the CPU evaluator chooses it.
-  const char* composition() const {
-    return p_.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "lamina_stack_eval_conserving" : "lamina_stack_eval";
-  }
+  const char* composition() const { return composition_function(p_.model); }
 
   // A member of the uniform block holding `value`, named after the node and parameter that gave it;
   // a node shared by several entries keeps one member.
@@ -450,6 +447,10 @@ std::string albedo_table(std::span<const Program> programs, Module& module) {
 }
 
 }  // namespace
+
+const char* composition_function(int model) {
+  return model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "lamina_stack_eval_conserving" : "lamina_stack_eval";
+}
 
 Module generate(std::span<const Program> programs, const Options& options) {
   if (programs.empty()) throw std::invalid_argument("GLSL back end: no material to generate");

@@ -87,6 +87,10 @@ struct Module {
 // Throws std::invalid_argument for an empty list or a Program that is not valid.
 Module generate(std::span<const Program> programs, const Options& options);
 
+// The kernel a material's eval returns for its Program::model: the model's composition, as the
+// CPU evaluator chooses it.
+const char* composition_function(int model);
+
 // The uniform side file: materials, their block names, sizes, members (name, type, offset,
 // value, node, parameter) and samplers, and the module's tables with their texels, as JSON text.
 std::string interface_json(const Module& module, const Options& options);

@@ -221,7 +221,8 @@ enum class Perturbation { None, EvalScale, EvalNan, KernelConstant, SampleDirect
 
 // A deliberately wrong module; false when the text to change is missing (then the perturbation
 // proves nothing).
-bool perturb(std::string& source, const std::string& prefix, Perturbation kind) {
+bool perturb(std::string& source, const std::string& prefix, int model, Perturbation kind) {
+  const std::string eval = glsl::composition_function(model);
   auto change = [&](const std::string& from, const std::string& to) {
     std::string changed = glsl::replace_all(source, from, to);
     bool found = changed != source;
@@ -232,13 +233,12 @@ bool perturb(std::string& source, const std::string& prefix, Perturbation kind) 
     case Perturbation::None: return true;
     case Perturbation::EvalScale:
       return change(
-          "  return lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
-          "  return 1.01f * lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//");
+          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
+          "  return 1.01f * " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//");
     case Perturbation::EvalNan:  // a quiet NaN that depends on the query, so that no compiler folds it
-      return change(
-          "  return lamina_stack_eval(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
-          "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * lamina_stack_eval(" + prefix + "_count, " +
-              prefix + "_entries, params, wi, wo);\n}\n\n//");
+      return change("  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
+                    "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + eval + "(" + prefix + "_count, " +
+                        prefix + "_entries, params, wi, wo);\n}\n\n//");
     case Perturbation::KernelConstant:
       return change("const float LAMINA_INV_PI = 0.318309886183791f;", "const float LAMINA_INV_PI = 0.32f;");
     case Perturbation::SampleDirection:
@@ -259,7 +259,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
   options.uniforms = run.uniforms;
   glsl::Module module = glsl::generate(std::span<const Program>(&program, 1), options);
   const glsl::MaterialInterface& mi = module.materials.front();
-  if (!perturb(module.source, mi.prefix, perturbation)) {
+  if (!perturb(module.source, mi.prefix, program.model, perturbation)) {
     std::printf("  FAIL %s %s: the perturbation found nothing to change\n", target, mode);
     return std::nullopt;
   }

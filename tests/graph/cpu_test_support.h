@@ -64,12 +64,22 @@ inline double fresnel_reference(double cos_i, std::complex<double> eta) {
 inline double radians(double degrees) { return degrees * kPi / 180.0; }
 inline double degrees(double radians) { return radians * 180.0 / kPi; }
 
-inline cpu::Evaluator load_evaluator(const std::filesystem::path& file) {
+inline Program load_program(const std::filesystem::path& file) {
   CheckedFile checked = check_file(file);
   REQUIRE_MESSAGE(checked.ok(), file.string());
   REQUIRE(checked.graphs.size() == 1);
   REQUIRE(checked.graphs[0].has_value());
-  return cpu::Evaluator(compile(*checked.graphs[0], file.string()));
+  return compile(*checked.graphs[0], file.string());
+}
+
+inline cpu::Evaluator load_evaluator(const std::filesystem::path& file) { return cpu::Evaluator(load_program(file)); }
+
+// As above, composing the stack in `model` (LAMINA_MODEL_*) whatever the file names, as the
+// command line's --model does.
+inline cpu::Evaluator load_evaluator(const std::filesystem::path& file, int model) {
+  Program program = load_program(file);
+  program.model = model;
+  return cpu::Evaluator(std::move(program));
 }
 
 inline cpu::Evaluator evaluator_from_text(const std::string& text) {

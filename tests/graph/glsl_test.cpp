@@ -110,7 +110,8 @@ TEST_CASE("glsl: the validator check can fail: a broken module is rejected") {
   test::TempDir dir;
   Compiled c = compile_file(test::source_dir() / "examples/materials/car_paint.json");
   std::string source = generate(c.programs, glsl::Target::Glsl330, false);
-  const std::string call = "return lamina_stack_eval(lamina_car_paint_count";
+  const std::string call =
+      std::string("return ") + glsl::composition_function(c.programs[0].model) + "(lamina_car_paint_count";
   REQUIRE(source.find(call) != std::string::npos);
   source = glsl::replace_all(source, call, "return lamina_stack_evil(lamina_car_paint_count");
   CHECK(!validate(source, dir.path(), "broken").empty());
@@ -355,6 +356,9 @@ TEST_CASE("glsl: a module holds the kernels its stack needs, and a texture kerne
       };
       auto has_layer =
           std::any_of(p.stack.begin(), p.stack.end(), [](const StackEntry& e) { return e.kind == k::LAMINA_LAYER; });
+      // A layer's interface is read through the model's own composition.
+      const char* interface_kernel =
+          p.model == k::LAMINA_MODEL_ENERGY_CONSERVING ? "lamina_boundary_reflection" : "lamina_interface_eval";
       auto has_op = [&](const char* type) {
         return std::any_of(p.ops.begin(), p.ops.end(), [&](const TextureOp& op) { return op.decl->type == type; });
       };
@@ -367,7 +371,7 @@ TEST_CASE("glsl: a module holds the kernels its stack needs, and a texture kerne
           {"oren_nayar", has_substrate(k::LAMINA_SUBSTRATE_OREN_NAYAR), false},
           {"lamina_lambert_eval", has_substrate(k::LAMINA_SUBSTRATE_LAMBERT), false},
           {"lamina_conductor_eval", has_substrate(k::LAMINA_SUBSTRATE_CONDUCTOR), false},
-          {"lamina_interface_eval", has_layer, false},
+          {interface_kernel, has_layer, false},
           {"checker_value", has_op("texture/checker"), true},
           {"remap_value", has_op("math/remap"), true},
           {"smoothstep_value", has_op("math/smoothstep"), true},
@@ -379,8 +383,8 @@ TEST_CASE("glsl: a module holds the kernels its stack needs, and a texture kerne
         std::set<std::string> names = glsl::identifiers(generate({p}, glsl::Target::Glsl450, uniforms));
         for (const Expected& e : expected) {
           const bool present = names.count(e.function) > 0;
-          if (e.needed) CHECK_MESSAGE(present, p.name << ": " << e.function);
-          if (!e.needed && e.exact) CHECK_MESSAGE(!present, p.name << ": " << e.function);
+          if (e.needed) CHECK_MESSAGE(present, p.name << ": " << std::string(e.function));
+          if (!e.needed && e.exact) CHECK_MESSAGE(!present, p.name << ": " << std::string(e.function));
         }
       }
     }
@@ -521,7 +525,8 @@ TEST_CASE("glsl: uniform mode lays out std140 blocks and packs the file's values
   CHECK(module.source.find("lamina_every_node_u.blinn_coat_ior") != std::string::npos);
 }
 
-TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file, and bad input writes nothing") {
+TEST_CASE(
+    "glsl: the CLI writes a module and, with --uniforms or a table, its side file, and bad input writes nothing") {
   test::TempDir dir;
   fs::path car = test::source_dir() / "examples/materials/car_paint.json";
   auto r =
@@ -549,9 +554,25 @@ TEST_CASE("glsl: the CLI writes a module and, with --uniforms, its side file, an
   CHECK(r.exit_code == 2);
   CHECK(!fs::exists(dir.path() / "none.frag"));
 
+  // The default model reads the dielectric albedo table: on standard output its side file needs a name.
   r = test::run_cli("glsl '" + car.string() + "' -o -", dir.path());
+  CHECK(r.exit_code == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.find("dielectric albedo table") != std::string::npos);
+  CHECK(r.err.find("--interface") != std::string::npos);
+  r = test::run_cli("glsl '" + car.string() + "' -o - --interface table.json", dir.path());
   CHECK(r.exit_code == 0);
   CHECK(r.out.rfind("#version 330 core\n", 0) == 0);
+  CHECK(test::read_file(dir.path() / "table.json").find("\"lamina_dielectric_albedo_table\"") != std::string::npos);
+  // The seeds' model reads none, so the module alone goes to standard output.
+  r = test::run_cli("glsl '" + car.string() + "' --model weidlich_wilkie -o -", dir.path());
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.rfind("#version 330 core\n", 0) == 0);
+  CHECK(r.out.find("lamina_dielectric_albedo_table") == std::string::npos);
+  r = test::run_cli("glsl '" + car.string() + "' --model kubelka_munk -o model.glsl", dir.path());
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--model") != std::string::npos);
+  CHECK(!fs::exists(dir.path() / "model.glsl"));
 }
 
 TEST_CASE("glsl: the CLI names the side file after OUT, refuses to drop it, and writes both files or neither") {

@@ -252,20 +252,23 @@ bool reaches_conductor(const Program& program, const std::vector<float>& registe
 }
 
 // Limits by structure on the errors beyond the unreachable share, each the worst measured over the
-// fitted texture states of the bundled examples (the table this test prints) plus 0.02, rounded up
-// to a whole percent: the margin covers compilers and libm implementations that round differently,
-// while a change that makes any fit worse by more than two percentage points fails.
+// fitted texture states of the bundled examples in their own model (the table this test prints)
+// plus 0.02, rounded up to a whole percent: the margin covers compilers and libm implementations
+// that round differently, while a change that makes any fit worse by more than two percentage
+// points fails.
 //  - Dielectric coats over a diffuse base: glTF's dielectric lobe over Lambert is the same
-//    structure. Worst: A(0) 0.131, A(80) 0.163 and RMS 0.190, all frosted_acrylic_paint (a rough
+//    structure. Worst: A(0) 0.219, A(80) 0.172 and RMS 0.252, all frosted_acrylic_paint (a rough
 //    coat, which glTF's single roughness shares with the base).
 //  - A conductor reachable under a coat: one Schlick-Fresnel GGX lobe per glTF layer cannot follow
-//    a metal lobe squeezed into the coat's refraction cone, nor the coat's absorption at grazing
-//    angles. Worst: A(0) 0.239 and A(80) 0.174 (car_paint), RMS 0.537 (silver_paint).
+//    a metal lobe squeezed into the coat's refraction cone, nor a coloured metal that stays coloured
+//    at grazing views, where glTF's Schlick term turns every metal white. Worst: A(0) 0.235
+//    (car_paint), A(80) 0.456 and RMS 0.414 (christmas_orb: its green at 80 degrees, 0.39, is read
+//    as 0.57).
 struct Limits {
   float normal, grazing, rms;
 };
-constexpr Limits kDiffuseBase{0.16f, 0.19f, 0.22f};
-constexpr Limits kConductorBase{0.26f, 0.20f, 0.56f};
+constexpr Limits kDiffuseBase{0.24f, 0.20f, 0.28f};
+constexpr Limits kConductorBase{0.26f, 0.48f, 0.44f};
 
 }  // namespace
 
