@@ -870,12 +870,36 @@ LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
   for (int i = 0; i < count; ++i) weight[i] /= sum;
 }
 
+// The share of a conductor lobe's samples (entry i, wo in its frame v) drawn cosine-weighted over
+// the outer hemisphere for the forward part of the layer over it (energy-conserving model), which
+// leaves where the metal's own lobe never points (over a smooth metal its density there is 0): the
+// share of the metal's reflection at v that falls outside the layer's exit cone and is trapped
+// (lamina_conductor_cone_share), held within [LAMINA_FORWARD_DRAWN, 1 - LAMINA_FORWARD_DRAWN] so
+// that both parts are always drawn; 0 where the layer has no forward part (every other entry,
+// and the Weidlich-Wilkie model, whose lobes are then drawn exactly as before).
+const float LAMINA_FORWARD_DRAWN = 0.1f;
+LAMINA_FN float lamina_forward_sampling_share(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                              LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, vec3 v) {
+  int parent = max(entries[i].parent, 0);
+  vec3 forward = params[parent].forward;
+  bool has_forward = entries[i].parent >= 0 && lamina_on_conductor(entries, parent) &&
+                     max(forward.x, max(forward.y, forward.z)) > 0.0f;
+  if (!has_forward) return 0.0f;
+  float whole = 0.0f;
+  float inside = lamina_conductor_cone_share(entries[i].distribution, params[parent].cone_grid,
+                                             params[parent].cone_etas, v.z, whole);
+  float trapped = whole > 0.0f ? 1.0f - inside / whole : 1.0f;
+  return clamp(trapped, LAMINA_FORWARD_DRAWN, 1.0f - LAMINA_FORWARD_DRAWN);
+}
+
 // A lobe draws directions in its own frame, below the layers above it. Directions inside the
 // exit cone (sin < 1/n, n the frame's absolute index) are carried up by Snell's law, with the
 // solid-angle Jacobian; a microfacet lobe's directions outside the cone, which cannot leave the
 // stack, are spread over the outer hemisphere by cos_out = cos_in / cos_critical (Jacobian
 // cos_critical), so every lobe's density integrates to exactly 1. Diffuse lobes draw cosine-
-// weighted directions inside the cone only, which is the cosine distribution outside.
+// weighted directions inside the cone only, which is the cosine distribution outside. A conductor
+// under a layer with a forward part draws lamina_forward_sampling_share of its directions
+// cosine-weighted outside, directly.
 // The density of wi under the selection (weight, v, valid) at wo.
 LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK],
@@ -907,7 +931,8 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
                           ? lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w[i],
                                                        jacobian[i], wi, params[i].n_above)
                           : lamina_diffuse_lobe_pdf(w[i], jacobian[i], params[i].n_above);
-      pdf += weight[i] * density;
+      float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
+      pdf += weight[i] * ((1.0f - forward) * density + forward * wi.z * LAMINA_INV_PI);
     }
   }
   return pdf;
@@ -941,8 +966,14 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
   vec3 w = vec3(0.0f);
   for (int i = 0; i < count; ++i) {
     if (i == chosen) {
-      if (lamina_is_microfacet_lobe(entries[i])) {
-        w = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i], u, params[i].n_above,
+      // A conductor's share for its layer's forward part: cosine-weighted, already outside.
+      float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
+      if (u.x < forward) {
+        w = lamina_sample_diffuse_lobe(vec2(u.x / forward, u.y), 1.0f);
+        inside_cone = false;
+      } else if (lamina_is_microfacet_lobe(entries[i])) {
+        w = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i],
+                                          vec2((u.x - forward) / (1.0f - forward), u.y), params[i].n_above,
                                           inside_cone);
       } else {
         w = lamina_sample_diffuse_lobe(u, params[i].n_above);
