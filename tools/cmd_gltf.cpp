@@ -32,9 +32,10 @@ std::string percent(float value) { return fixed(100.0 * double(value), 1) + "%";
 void print_report(const gltf::Export& result) {
   std::cout << "fallback fit (relative albedo error at 0 and 80 degrees, of it at 0 degrees the share beyond any "
                "glTF material where the lamina material reflects more than it receives, RMS residual over the "
-               "fit's direction pairs; worst over texture states):\n";
-  std::printf("  %-24s %6s %8s %9s %7s %7s %7s %7s  %s\n", "material", "states", "metallic", "roughness", "albedo0",
-              "beyond", "albedo80", "rms", "extensions");
+               "fit's direction pairs, and the CIE 1976 lightness and colour (a*b*) differences of the mean colour on "
+               "lamina plot's sphere; worst over texture states):\n";
+  std::printf("  %-24s %6s %8s %9s %7s %7s %7s %7s %5s %5s  %s\n", "material", "states", "metallic", "roughness",
+              "albedo0", "beyond", "albedo80", "rms", "dL*", "dab", "extensions");
   for (const auto& m : result.materials) {
     const auto& f = m.fallback;
     std::string extensions;
@@ -45,9 +46,10 @@ void print_report(const gltf::Export& result) {
     std::string states = std::to_string(f.states.size()) + (f.interpolated ? "~" : "");
     std::string metallic = f.metallic_roughness ? "tex" : fixed(f.params.metallic, 2);
     std::string roughness = f.metallic_roughness ? "tex" : fixed(f.params.roughness, 2);
-    std::printf("  %-24s %6s %8s %9s %7s %7s %8s %7s %s\n", m.name.c_str(), states.c_str(), metallic.c_str(),
+    std::printf("  %-24s %6s %8s %9s %7s %7s %8s %7s %5s %5s %s\n", m.name.c_str(), states.c_str(), metallic.c_str(),
                 roughness.c_str(), percent(f.worst.albedo_normal).c_str(), percent(f.worst.unreachable_normal).c_str(),
                 percent(f.worst.albedo_grazing).c_str(), percent(f.worst.rms).c_str(),
+                fixed(f.worst.lightness, 1).c_str(), fixed(f.worst.colour, 1).c_str(),
                 extensions.empty() ? " -" : extensions.c_str());
   }
   std::cout << std::flush;

@@ -32,6 +32,8 @@ void widen(FitError& worst, const FitError& e) {
   worst.unreachable_normal = std::max(worst.unreachable_normal, e.unreachable_normal);
   worst.albedo_grazing = std::max(worst.albedo_grazing, e.albedo_grazing);
   worst.rms = std::max(worst.rms, e.rms);
+  worst.lightness = std::max(worst.lightness, e.lightness);
+  worst.colour = std::max(worst.colour, e.colour);
 }
 
 // The distinct texture states over the bake grid: which state each texel has, and each state's

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <numbers>
 
+#include "graph/gltf/appearance.h"
 #include "graph/gltf/hemisphere_quadrature.h"
 #include "graph/gltf/pbr_fit.h"
 
@@ -278,6 +279,13 @@ FitResult fit_pbr(const FitTarget& target) {
           std::max(result.error.unreachable_normal, (target_normal[c] - 1.0f) / target_normal[c]);
   result.error.albedo_grazing = relative_albedo_error(pbr_albedo(best.params, grazing), target.albedo(grazing));
   result.error.rms = objective.target_j() > 0.0 ? float(std::sqrt(best.j / objective.target_j())) : 0.0f;
+  FitTarget fitted;
+  fitted.eval = [&](glm::vec3 wi, glm::vec3 wo) { return pbr_eval(best.params, wi, wo); };
+  fitted.albedo = [&](glm::vec3 wo) { return pbr_albedo(best.params, wo); };
+  const glm::vec3 seen = lab_from_linear_srgb(sphere_colour(target));
+  const glm::vec3 shown = lab_from_linear_srgb(sphere_colour(fitted));
+  result.error.lightness = std::abs(shown.x - seen.x);
+  result.error.colour = chromatic_difference(shown, seen);
   return result;
 }
 

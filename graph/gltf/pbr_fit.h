@@ -46,6 +46,11 @@ struct FitError {
   float albedo_normal = 0.0f;   // max over channels of |A_fit - A| / max(A, 0.01) at normal incidence
   float albedo_grazing = 0.0f;  // the same at 80 degrees
   float rms = 0.0f;             // RMS of the objective's residuals, relative to the RMS of the target
+  // What a person sees (appearance.h): the fallback's mean colour on the preview sphere against
+  // the material's own, as CIE 1976 |Delta L*| and the distance of (a*, b*), hue and chroma
+  // (chromatic_difference); about 1 is a just visible difference, 100 black against white.
+  float lightness = 0.0f;
+  float colour = 0.0f;
   // The share of albedo_normal no glTF material can reach: where the lamina material reflects more
   // than it receives (the layered model is not energy conserving, see the white furnace test), the
   // max over channels of (A - 1) / A at normal incidence; 0 for an energy-conserving target.

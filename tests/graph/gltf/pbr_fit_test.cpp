@@ -270,6 +270,14 @@ struct Limits {
 constexpr Limits kDiffuseBase{0.24f, 0.20f, 0.28f};
 constexpr Limits kConductorBase{0.26f, 0.48f, 0.44f};
 
+// What a person sees: the fallback's mean colour on the preview sphere against the material's own
+// (graph/gltf/appearance.h), CIE 1976 |Delta L*| and the distance of (a*, b*), for every structure:
+// the worst measured plus 2, rounded up (|Delta L*| 4.3, checker_tiles' gold square; (a*, b*) 4.8,
+// a copper state of patina_map_copper). A fallback that turns a coloured material grey differs by
+// its whole chroma (gold_metallic_paint's grey-white fallback: 12.5, appearance_test.cpp).
+constexpr float kLightnessLimit = 7.0f;
+constexpr float kColourLimit = 7.0f;
+
 }  // namespace
 
 TEST_CASE("fit_pbr fits every texture state of every bundled example within its structure's limits") {
@@ -278,7 +286,7 @@ TEST_CASE("fit_pbr fits every texture state of every bundled example within its 
   const gltf::FallbackOptions options;
   std::string table =
       "\nname                   state uv            base  base colour           metal rough  ior   spec"
-      "  coat  c.rough ext | A(0) err unreach A(80) err unreach rms\n";
+      "  coat  c.rough ext | A(0) err unreach A(80) err unreach rms    dL*  dab\n";
   for (const auto& file : test::example_files()) {
     const std::string name = file.stem().string();
     CheckedFile checked = check_file(file);
@@ -299,18 +307,20 @@ TEST_CASE("fit_pbr fits every texture state of every bundled example within its 
       char line[400];
       std::snprintf(line, sizeof line,
                     "%-22s (%.3f, %.3f)  %-5s (%.3f,%.3f,%.3f)  %.3f %.3f  %.3f %.3f  %.3f %.3f   %c%c%c | %.4f   "
-                    "%.4f  %.4f   %.4f  %.4f\n",
+                    "%.4f  %.4f   %.4f  %.4f  %4.1f %4.1f\n",
                     name.c_str(), state.uv.x, state.uv.y, conductor ? "metal" : "diff", p.base_color.x, p.base_color.y,
                     p.base_color.z, p.metallic, p.roughness, p.ior, p.specular, p.clearcoat, p.clearcoat_roughness,
                     fit.uses_clearcoat ? 'c' : '-', fit.uses_ior ? 'i' : '-', fit.uses_specular ? 's' : '-',
                     fit.error.albedo_normal, unreachable_normal, fit.error.albedo_grazing, unreachable_grazing,
-                    fit.error.rms);
+                    fit.error.rms, fit.error.lightness, fit.error.colour);
       table += line;
       INFO(line);
       const Limits& limits = conductor ? kConductorBase : kDiffuseBase;
       CHECK(fit.error.albedo_normal <= unreachable_normal + limits.normal);
       CHECK(fit.error.albedo_grazing <= unreachable_grazing + limits.grazing);
       CHECK(fit.error.rms <= limits.rms);
+      CHECK(fit.error.lightness <= kLightnessLimit);
+      CHECK(fit.error.colour <= kColourLimit);
       // The reported unreachable share is (A - 1) / A of the material's own albedo at normal incidence.
       CHECK(fit.error.unreachable_normal == doctest::Approx(unreachable_normal).epsilon(1e-4));
     }
