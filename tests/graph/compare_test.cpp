@@ -18,7 +18,7 @@ TEST_CASE("a bare Lambert base, where the layered model is exact, compares with 
   for (const cpu::AlbedoComparison& row : c.albedo) {
     INFO("theta " << row.theta_deg);
     CHECK(row.relative_error < 1e-5);
-    CHECK(row.albedo.reference.r == doctest::Approx(0.8).epsilon(1e-6));
+    CHECK(row.albedo.reference.r == doctest::Approx(0.8).epsilon(1e-6).scale(0.0));
   }
   for (const cpu::SliceComparison& s : c.slices) {
     CHECK(s.f.size() == s.theta_i_deg.size());

@@ -130,7 +130,8 @@ TEST_CASE("a rough boundary matches a double-precision transcription of Walter e
     ++compared;
     INFO("distribution " << c.distribution << " m " << c.m << " eta " << c.eta << " l " << l.x << "," << l.y << ","
                          << l.z << " e " << e.x << "," << e.y << "," << e.z);
-    CHECK(got == doctest::Approx(expected).epsilon(2e-3));
+    // 2e-3 relative; below 1e-3 (float V.H and D lose digits there) 2e-6 absolute.
+    CHECK(got == doctest::Approx(expected).epsilon(2e-3).scale(1e-3));
   }
   CHECK(compared > 2000);
 }
@@ -143,7 +144,7 @@ TEST_CASE("Smith's masking of every distribution matches a brute-force integral 
         const double expected = brute_force_g1(distribution, cos_v, m);
         const double got = k::lamina_smith_g1(distribution, float(cos_v), float(m));
         INFO("distribution " << distribution << " m " << m << " cos " << cos_v);
-        CHECK(got == doctest::Approx(expected).epsilon(2e-4));
+        CHECK(got == doctest::Approx(expected).epsilon(3e-4).scale(0.0));
       }
 }
 
@@ -155,7 +156,9 @@ TEST_CASE("a rough boundary obeys the radiance law of refraction: f(l, e) / n_e^
     const double n_l = l.z > 0.0f ? 1.0 : c.eta, n_e = e.z > 0.0f ? 1.0 : c.eta;
     const double forward = k::lamina_boundary_eval(l, e, c.eta, c.distribution, c.fresnel, c.m) / (n_e * n_e);
     const double backward = k::lamina_boundary_eval(e, l, c.eta, c.distribution, c.fresnel, c.m) / (n_l * n_l);
-    CHECK(forward == doctest::Approx(backward).epsilon(1e-4));
+    // 2e-4 relative; below 0.02, where the float refraction's rounding moves a transmitted value by
+    // up to 2% of itself, 4e-6 absolute.
+    CHECK(forward == doctest::Approx(backward).epsilon(2e-4).scale(0.02));
     CHECK(forward >= 0.0);
   }
 }
@@ -200,8 +203,8 @@ TEST_CASE("a rough boundary's sampler draws its pdf, and no boundary scatters mo
     const double error = std::sqrt(std::max(sampled_sq / draws - mean * mean, 0.0) / draws);
     INFO("distribution " << c.distribution << " fresnel " << c.fresnel << " m " << c.m << " eta " << c.eta << " x.z "
                          << x.z);
-    CHECK(density == doctest::Approx(double(kept) / draws).epsilon(0.01));
-    CHECK(mean == doctest::Approx(scattered).epsilon(0.01 + 4.0 * error / scattered));
+    CHECK(density == doctest::Approx(double(kept) / draws).epsilon(0.01).scale(0.0));
+    CHECK(mean == doctest::Approx(scattered).epsilon(0.01 + 4.0 * error / scattered).scale(0.0));
     CHECK(scattered <= 1.0 + 0.005);
   }
 }
@@ -503,7 +506,7 @@ TEST_CASE("clear layers between equal indices only attenuate: f is the base's ti
   const vec3 t = k::lamina_crossing_transmittance(p.absorption, p.thickness, wi.z) *
                  k::lamina_crossing_transmittance(p.absorption, p.thickness, wo.z);
   const dvec3 expected = dvec3(t) * dvec3(0.8, 0.5, 0.2) / test::kPi;
-  for (int c = 0; c < 3; ++c) CHECK(r.value[c] == doctest::Approx(expected[c]).epsilon(1e-5));
+  for (int c = 0; c < 3; ++c) CHECK(r.value[c] == doctest::Approx(expected[c]).epsilon(1e-5).scale(0.0));
 }
 
 // Every example, and random valid stacks with nested layers and mixes.

@@ -15,13 +15,13 @@ namespace k = lamina::kernels;
 
 TEST_CASE("math/smoothstep's kernel is t^2 (3 - 2t) of the clamped position between its edges") {
   // t = 0.25: 0.0625 (3 - 0.5) = 0.15625; t = 0.5 gives 0.5 whatever the edges.
-  CHECK(k::smoothstep_value(0.25f, 0.0f, 1.0f) == doctest::Approx(0.15625).epsilon(1e-7));
-  CHECK(k::smoothstep_value(2.0f, 1.0f, 3.0f) == doctest::Approx(0.5).epsilon(1e-7));
+  CHECK(k::smoothstep_value(0.25f, 0.0f, 1.0f) == doctest::Approx(0.15625).epsilon(1e-7).scale(0.0));
+  CHECK(k::smoothstep_value(2.0f, 1.0f, 3.0f) == doctest::Approx(0.5).epsilon(1e-7).scale(0.0));
   // Outside the edges it holds 0 and 1.
   CHECK(k::smoothstep_value(-1.0f, 0.0f, 1.0f) == 0.0f);
   CHECK(k::smoothstep_value(5.0f, 0.0f, 1.0f) == 1.0f);
   // Reversed edges fall: t = (0.25 - 1) / (0 - 1) = 0.75, 0.5625 (3 - 1.5) = 0.84375.
-  CHECK(k::smoothstep_value(0.25f, 1.0f, 0.0f) == doctest::Approx(0.84375).epsilon(1e-7));
+  CHECK(k::smoothstep_value(0.25f, 1.0f, 0.0f) == doctest::Approx(0.84375).epsilon(1e-7).scale(0.0));
   // Equal edges are a step at the edge, not a division by zero.
   CHECK(k::smoothstep_value(0.5f, 0.5f, 0.5f) == 1.0f);
   CHECK(k::smoothstep_value(0.4f, 0.5f, 0.5f) == 0.0f);
@@ -49,8 +49,8 @@ TEST_CASE("a math/smoothstep of a checker's value weighs a mix on the CPU") {
   ShadingContext even, odd;
   even.uv = glm::vec2(0.1f, 0.1f);  // default scale 8: floor(0.8) + floor(0.8) = 0
   odd.uv = glm::vec2(0.2f, 0.1f);   // floor(1.6) + floor(0.8) = 1
-  CHECK(double(e.eval(even, up, up).x) * std::numbers::pi == doctest::Approx(0.84375).epsilon(1e-6));
-  CHECK(double(e.eval(odd, up, up).x) * std::numbers::pi == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(double(e.eval(even, up, up).x) * std::numbers::pi == doctest::Approx(0.84375).epsilon(1e-6).scale(0.0));
+  CHECK(double(e.eval(odd, up, up).x) * std::numbers::pi == doctest::Approx(0.5).epsilon(1e-6).scale(0.0));
 }
 
 TEST_CASE("math/smoothstep refuses a value that is not a float") {

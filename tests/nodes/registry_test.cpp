@@ -116,8 +116,8 @@ TEST_CASE("chromium's n and k follow from Rakic's Lorentz-Drude model at 650, 55
     std::complex<double> eps = 1.0 - 0.168 * wp * wp / (w * std::complex<double>(w, 0.047));
     for (const auto& o : osc) eps += o[0] * wp * wp / std::complex<double>(o[2] * o[2] - w * w, -w * o[1]);
     std::complex<double> index = std::sqrt(eps);
-    CHECK(cr->n[c] == doctest::Approx(index.real()).epsilon(1e-3));
-    CHECK(cr->k[c] == doctest::Approx(index.imag()).epsilon(1e-3));
+    CHECK(cr->n[c] == doctest::Approx(index.real()).epsilon(1e-3).scale(0.0));
+    CHECK(cr->k[c] == doctest::Approx(index.imag()).epsilon(1e-3).scale(0.0));
   }
 }
 

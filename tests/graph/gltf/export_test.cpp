@@ -262,7 +262,7 @@ const Json& node_named(const Json& gltf, const std::string& name) { return named
 void check_numbers(const Json& actual, std::initializer_list<double> expected, double epsilon = 1e-12) {
   REQUIRE(actual.size() == expected.size());
   size_t i = 0;
-  for (double e : expected) CHECK(actual[i++].get<double>() == doctest::Approx(e).epsilon(epsilon));
+  for (double e : expected) CHECK(actual[i++].get<double>() == doctest::Approx(e).epsilon(epsilon));  // absolute near 0
 }
 
 // glTF node rotation [x, y, z, w] applied to v.
@@ -284,8 +284,10 @@ TEST_CASE("glTF export: a spot light has its cone angles in radians and shines a
   CHECK(light["range"] == 12.0);
   check_numbers(light["color"], {1.0, 0.5, 0.25});
   // 10 and 25 degrees: pi / 18 and 5 pi / 36.
-  CHECK(light["spot"]["innerConeAngle"].get<double>() == doctest::Approx(0.17453292519943295).epsilon(1e-15));
-  CHECK(light["spot"]["outerConeAngle"].get<double>() == doctest::Approx(0.43633231299858238).epsilon(1e-15));
+  CHECK(light["spot"]["innerConeAngle"].get<double>() ==
+        doctest::Approx(0.17453292519943295).epsilon(1e-15).scale(0.0));
+  CHECK(light["spot"]["outerConeAngle"].get<double>() ==
+        doctest::Approx(0.43633231299858238).epsilon(1e-15).scale(0.0));
   const Json& node = node_named(j, "spot");
   CHECK(node["extensions"]["KHR_lights_punctual"]["light"] == 0);
   check_numbers(node["translation"], {1.0, 2.0, 3.0});
@@ -305,7 +307,7 @@ TEST_CASE("glTF export: a camera looks at its target, and a directional light sh
   Json j = glb_json(gltf::export_scene(scene, "camera.glb", quick()).files[0].bytes);
   const Json& camera = j["cameras"][0];
   CHECK(camera["type"] == "perspective");
-  CHECK(camera["perspective"]["yfov"].get<double>() == doctest::Approx(0.61086523819801535).epsilon(1e-15));
+  CHECK(camera["perspective"]["yfov"].get<double>() == doctest::Approx(0.61086523819801535).epsilon(1e-15).scale(0.0));
   CHECK(camera["perspective"]["aspectRatio"] == 2.0);
   CHECK(camera["perspective"]["znear"] == 0.5);
   CHECK(camera["perspective"]["zfar"] == 80.0);
@@ -422,7 +424,7 @@ TEST_CASE("glTF export: a label is an unlit quad under its object, facing the fi
   // The sphere is 4 wide seen from the camera: the text is 0.14 x 4 = 0.56 high, its top 0.02 x 4
   // = 0.08 below the sphere's lowest point (5 - 2); x and z centred under it.
   const Json& scale = label["scale"];
-  CHECK(scale[1].get<double>() == doctest::Approx(0.56).epsilon(1e-6));
+  CHECK(scale[1].get<double>() == doctest::Approx(0.56).epsilon(1e-6).scale(0.0));
   CHECK(scale[0].get<double>() > scale[1].get<double>());  // "Brass" is wider than high
   CHECK(scale[0].get<double>() <= 1.2 * 4.0 + 1e-12);      // and never wider than 1.2 x the object
   check_numbers(label["translation"], {0.0, 2.92, 0.0}, 1e-6);

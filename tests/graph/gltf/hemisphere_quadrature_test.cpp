@@ -71,13 +71,13 @@ double share_reflected_above(double alpha, vec3 wo_float) {
 TEST_CASE("ggx_reflection_pdf is GGX's D(h) cos(theta_h) / (4 wo.h), D worked by hand") {
   const vec3 n(0.0f, 0.0f, 1.0f);
   // wi = wo = n: h = n, D = 1 / (pi alpha^2), cos(theta_h) = wo.h = 1. alpha = 0.25: 1 / (4 pi / 16).
-  CHECK(double(gltf::ggx_reflection_pdf(0.25f, n, n)) == doctest::Approx(4.0 / kPi).epsilon(1e-6));
+  CHECK(double(gltf::ggx_reflection_pdf(0.25f, n, n)) == doctest::Approx(4.0 / kPi).epsilon(1e-6).scale(0.0));
   // wo = n, wi 60 degrees off it: h is 30 degrees off, cos(theta_h) = wo.h, so the pdf is D / 4 with
   // D = alpha^2 / (pi (cos^2 (alpha^2 - 1) + 1)^2) (Walter et al. 2007, eq. 33). alpha = 0.5:
   // 0.25 / (pi (0.75 * -0.75 + 1)^2) = 0.25 / (pi * 0.4375^2).
   const vec3 wi60 = view(60.0);
   CHECK(double(gltf::ggx_reflection_pdf(0.5f, wi60, n)) ==
-        doctest::Approx(0.25 / (kPi * 0.4375 * 0.4375) / 4.0).epsilon(1e-5));
+        doctest::Approx(0.25 / (kPi * 0.4375 * 0.4375) / 4.0).epsilon(1e-5).scale(0.0));
   // Below the horizon on either side: no density.
   CHECK(gltf::ggx_reflection_pdf(0.5f, vec3(wi60.x, 0.0f, -wi60.z), n) == 0.0f);
   CHECK(gltf::ggx_reflection_pdf(0.5f, n, vec3(wi60.x, 0.0f, -wi60.z)) == 0.0f);
@@ -88,7 +88,8 @@ TEST_CASE("ggx_reflection_pdf integrates over the hemisphere to the share of ref
   // tan^2 < 1, i.e. u < 1 / (1 + alpha^2) in Walter et al.'s inversion: that share exactly.
   for (float alpha : {0.04f, 0.15f, 0.5f, 1.0f}) {
     CAPTURE(alpha);
-    CHECK(integrate_pdf(alpha, vec3(0.0f, 0.0f, 1.0f)) == doctest::Approx(1.0 / (1.0 + alpha * alpha)).epsilon(1e-3));
+    CHECK(integrate_pdf(alpha, vec3(0.0f, 0.0f, 1.0f)) ==
+          doctest::Approx(1.0 / (1.0 + alpha * alpha)).epsilon(1e-3).scale(0.0));
   }
   // Off the normal, against the share counted over a fine grid of drawn normals.
   for (double degrees : {45.0, 72.0}) {
@@ -96,7 +97,7 @@ TEST_CASE("ggx_reflection_pdf integrates over the hemisphere to the share of ref
       CAPTURE(degrees);
       CAPTURE(alpha);
       const vec3 wo = view(degrees);
-      CHECK(integrate_pdf(alpha, wo) == doctest::Approx(share_reflected_above(alpha, wo)).epsilon(2e-3));
+      CHECK(integrate_pdf(alpha, wo) == doctest::Approx(share_reflected_above(alpha, wo)).epsilon(2e-3).scale(0.0));
     }
   }
 }
@@ -115,7 +116,7 @@ TEST_CASE("hemisphere_quadrature's weights integrate the cosine over the hemisph
       CHECK((d.weight > 0.0f) == (d.wi.z > 0.0f));
       sum += double(d.weight);
     }
-    CHECK(sum == doctest::Approx(kPi).epsilon(2e-3));
+    CHECK(sum == doctest::Approx(kPi).epsilon(2e-3).scale(0.0));
   }
   CHECK(gltf::hemisphere_quadrature(vec3(0.0f, 0.6f, -0.8f), alphas, 16).empty());
 }
