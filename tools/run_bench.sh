@@ -36,11 +36,12 @@ for (const [label, prefix] of rows) {
 const gpu = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
 const ms = {};
 for (const b of gpu.benchmarks) ms[b.name.split("/")[1]] = b.real_time;
-console.log(`GLSL on llvmpipe (${gpu.context.host_name}), 1024 x 1024 sphere, ratio to a single lobe (same run):`);
+console.log(`GLSL on llvmpipe (${gpu.context.host_name}), 1024 x 1024 sphere, ratio to a single lobe (same run), each example in the default model and in the Weidlich-Wilkie model:`);
 for (const [label, prefix] of [["light only", "light_"], ["sphere", "sphere_"]]) {
   const base = ms[prefix + "single_lobe"];
-  for (const name of ["car_paint", "house_paint"]) {
+  for (const name of ["car_paint", "house_paint", "car_paint_weidlich_wilkie", "house_paint_weidlich_wilkie"]) {
     const t = ms[prefix + name];
-    console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ms vs ${base.toFixed(1)} ms per frame)`);
+    if (!(t > 0)) throw new Error(`GLSL benchmark ${prefix + name} did not run`);
+    console.log(`  ${label.padEnd(11)} ${name.padEnd(28)} ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ms vs ${base.toFixed(1)} ms per frame)`);
   }
 }' "$cpu" "$gpu"

@@ -13,10 +13,12 @@
 #include <string>
 
 #include "glsl/gl_runner.h"
+#include "glsl/material_pass.h"
 #include "graph/compile.h"
 #include "graph/glsl/generator.h"
 #include "graph/glsl/glsl_text.h"
 #include "graph/load.h"
+#include "graph/model.h"
 
 namespace {
 
@@ -28,14 +30,20 @@ constexpr int kSize = 1024;
 const char* kSingleLobe = R"({"format": 1, "materials": [{"name": "single_lobe", "surface": "@metal", "nodes": [
     {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0}]}]})";
 
+// An example in its own (the default) model, or with the suffix "_weidlich_wilkie" in the seeds'.
 Program program(const std::string& name) {
   if (name == "single_lobe") {
     CheckedFile checked = check_text(kSingleLobe, "bench.json");
     return compile(*checked.graphs[0], "bench.json");
   }
-  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name + ".json";
+  const std::string suffix = "_weidlich_wilkie";
+  const bool faithful = name.size() > suffix.size() && name.ends_with(suffix);
+  const std::string example = faithful ? name.substr(0, name.size() - suffix.size()) : name;
+  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + example + ".json";
   CheckedFile checked = check_file(file);
-  return compile(*checked.graphs[0], file);
+  Program p = compile(*checked.graphs[0], file);
+  if (faithful) p.model = model_number("weidlich_wilkie");
+  return p;
 }
 
 gltest::Runner& runner() {
@@ -56,7 +64,8 @@ gltest::Pass pass(const std::string& name, bool ambient) {
   std::vector<Program> programs{program(name)};
   glsl::Options options;
   options.sphere_shader = true;
-  std::string source = glsl::generate(programs, options).source;
+  const glsl::Module module = glsl::generate(programs, options);
+  std::string source = module.source;
   // Edits of the wrapper's text, each of which must find what it replaces.
   auto edit = [&](const std::string& from, const std::string& to) {
     if (source.find(from) == std::string::npos) {
@@ -73,6 +82,7 @@ gltest::Pass pass(const std::string& name, bool ambient) {
   p.fragment_source = source;
   p.width = kSize;
   p.height = kSize;
+  test::bind_material(p, programs[0], module, module.materials.front(), false);  // the table, if any
   return p;
 }
 
@@ -103,5 +113,7 @@ void BM_glsl(benchmark::State& state, const std::string& name, bool ambient) {
 LAMINA_GLSL_BENCH(single_lobe);
 LAMINA_GLSL_BENCH(car_paint);
 LAMINA_GLSL_BENCH(house_paint);
+LAMINA_GLSL_BENCH(car_paint_weidlich_wilkie);
+LAMINA_GLSL_BENCH(house_paint_weidlich_wilkie);
 
 BENCHMARK_MAIN();
