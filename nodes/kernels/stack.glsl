@@ -926,11 +926,16 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
   }
   float pdf = 0.0f;
   for (int i = 0; i < count; ++i) {
-    if (lamina_is_lobe(entries[i]) && weight[i] > 0.0f && valid[i] && w[i].z > 0.0f) {
-      float density = lamina_is_microfacet_lobe(entries[i])
-                          ? lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w[i],
-                                                       jacobian[i], wi, params[i].n_above)
-                          : lamina_diffuse_lobe_pdf(w[i], jacobian[i], params[i].n_above);
+    if (lamina_is_lobe(entries[i]) && weight[i] > 0.0f && valid[i]) {
+      // The lobe's own draws reach wi only where it refracts down to the entry; the forward part's
+      // are drawn outside, so they reach every wi.
+      float density = 0.0f;
+      if (w[i].z > 0.0f) {
+        density = lamina_is_microfacet_lobe(entries[i])
+                      ? lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w[i], jacobian[i],
+                                                   wi, params[i].n_above)
+                      : lamina_diffuse_lobe_pdf(w[i], jacobian[i], params[i].n_above);
+      }
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       pdf += weight[i] * ((1.0f - forward) * density + forward * wi.z * LAMINA_INV_PI);
     }
