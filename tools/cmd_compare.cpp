@@ -8,6 +8,7 @@
 #include "tools/commands.h"
 #include "tools/figure_file.h"
 #include "tools/material_arg.h"
+#include "tools/output.h"
 #include "tools/plot_compare.h"
 
 namespace lamina::cli {
@@ -97,6 +98,8 @@ int run_compare(const CompareCliOptions& o) {
     if (int code = prepare_figure("--plot", o.plot, o.size, figure); code != kExitOk) return code;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
+  if (!o.plot.empty())
+    if (int code = check_outputs({figure.path}); code != kExitOk) return code;  // before the walks
   const cpu::ShadingPoint point = evaluator->bind(*ctx);
   const cpu::Comparison c = cpu::compare_to_reference(point, {o.albedo_walks, o.slice_walks, o.seed});
   if (!o.plot.empty()) {

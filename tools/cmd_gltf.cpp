@@ -89,6 +89,7 @@ int run_gltf(const GltfOptions& o) {
     return kExitIo;
   }
   if (!print_diagnostics(diagnostics)) return kExitInvalid;
+  if (int code = check_outputs({output}); code != kExitOk) return code;  // before the fit
 
   gltf::ExportOptions options;
   options.fallback.bake_size = o.bake_size;

@@ -8,6 +8,7 @@
 #include "tools/commands.h"
 #include "tools/figure_file.h"
 #include "tools/material_arg.h"
+#include "tools/output.h"
 #include "tools/plot_figure.h"
 
 namespace lamina::cli {
@@ -40,6 +41,7 @@ int run_plot(const PlotOptions& o) {
 
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
+  if (int code = check_outputs({figure.path}); code != kExitOk) return code;  // before the drawing
 
   OIIO::ImageBuf image = figure_image(figure);
   if (!plot::draw_figure(image, *evaluator, o.material.file, figure.fonts, glm::vec2((*uv)[0], (*uv)[1]), o.ambient)) {

@@ -97,16 +97,14 @@ void roll_back(std::vector<Target>& targets) {
   }
 }
 
-}  // namespace
-
-int write_outputs(const std::vector<OutputFile>& files) {
-  std::vector<Target> targets;
-  // First every check, before anything is written.
-  for (const OutputFile& f : files) {
+// The check phase of write_outputs: every target resolved, and refused (kExitInvalid, nothing
+// written) when it is a directory, an input of this command, or named twice.
+int resolve_targets(const std::vector<fs::path>& paths, std::vector<Target>& targets) {
+  for (const fs::path& path : paths) {
     Target t;
-    t.requested = f.path;
+    t.requested = path;
     int error = 0;
-    const auto destination = follow_links(f.path, error);
+    const auto destination = follow_links(path, error);
     if (!destination) return failed(t, error);
     t.destination = *destination;
     struct stat st {};
@@ -140,6 +138,22 @@ int write_outputs(const std::vector<OutputFile>& files) {
     if (!t.exists) t.mode = new_file_mode();
     targets.push_back(std::move(t));
   }
+  return kExitOk;
+}
+
+}  // namespace
+
+int check_outputs(const std::vector<fs::path>& paths) {
+  std::vector<Target> targets;
+  return resolve_targets(paths, targets);
+}
+
+int write_outputs(const std::vector<OutputFile>& files) {
+  std::vector<fs::path> paths;
+  for (const OutputFile& f : files) paths.push_back(f.path);
+  std::vector<Target> targets;
+  // First every check, before anything is written.
+  if (int code = resolve_targets(paths, targets); code != kExitOk) return code;
 
   // Then each regular file's content, beside its destination.
   for (size_t i = 0; i < targets.size(); ++i) {

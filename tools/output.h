@@ -28,6 +28,10 @@ struct OutputFile {
 // device, FIFO or socket (/dev/null, a pipe) is written in place, last, and cannot be taken back.
 int write_outputs(const std::vector<OutputFile>& files);
 
+// write_outputs' checks alone, for a command to run once its inputs are read and before its long
+// work (a figure, a fit), so that a refused output fails at once; write_outputs checks again.
+int check_outputs(const std::vector<std::filesystem::path>& paths);
+
 // Writes a command's result (a GLSL module for `-o -`) to standard output, remembering the
 // system's reason when it does not arrive.
 void write_standard_output(std::string_view text);

@@ -14,13 +14,14 @@ using glm::vec3;
 
 namespace {
 
-// The kernels' sky estimate at wo: lamina_preview_sky of the weights of the points' draws.
-vec3 sky_estimate(const Evaluator& evaluator, const ShadingContext& ctx, vec3 wo, float ambient) {
+// The kernels' sky estimate at wo: lamina_preview_sky of the weights of the points' draws, all at
+// one resolved point (a textured material's stack is resolved once, not for every draw).
+vec3 sky_estimate(const ShadingPoint& point, vec3 wo, float ambient) {
   const vec3 view = k::lamina_preview_sky_view(wo);
   vec3 weights(0.0f);
   for (int i = 0; i < k::LAMINA_PREVIEW_SKY_POINTS; ++i) {
     vec3 p = k::lamina_preview_sky_point(i);
-    Sample drawn = evaluator.sample(ctx, view, vec2(p.x, p.y), p.z);
+    Sample drawn = point.sample(view, vec2(p.x, p.y), p.z);
     weights += k::lamina_preview_sky_weight(drawn.f, drawn.wi, drawn.pdf);
   }
   return k::lamina_preview_sky(weights, vec3(ambient));
@@ -45,10 +46,10 @@ std::vector<vec3> render_preview(const Evaluator& evaluator, int width, int heig
   if (ambient > 0.0f && evaluator.program().ops.empty())
     for (int i = 0; i <= kSkyTableSize; ++i) {
       const float c = float(i) / float(kSkyTableSize);
-      sky_table.push_back(sky_estimate(evaluator, ShadingContext{}, vec3(std::sqrt(1.0f - c * c), 0.0f, c), ambient));
+      sky_table.push_back(sky_estimate(evaluator.bind({}), vec3(std::sqrt(1.0f - c * c), 0.0f, c), ambient));
     }
   auto sky_at = [&](const ShadingContext& ctx, vec3 wo) {
-    if (sky_table.empty()) return sky_estimate(evaluator, ctx, wo, ambient);
+    if (sky_table.empty()) return sky_estimate(evaluator.bind(ctx), wo, ambient);
     const float t = std::clamp(wo.z, 0.0f, 1.0f) * float(kSkyTableSize);
     const int i = std::min(int(t), kSkyTableSize - 1);
     return glm::mix(sky_table[size_t(i)], sky_table[size_t(i) + 1], t - float(i));

@@ -561,15 +561,14 @@ std::vector<vec2> sampling_uvs(const Example& example) {
 // by the adaptive quadrature on cells of h (20 rows in theta_h). Seeds: the normal (the mirror direction, where
 // every microfacet lobe peaks) and the half vector of the zenith (where directions that cannot
 // leave the stack are spread around).
-double halfvector_integral(const cpu::Evaluator& e, const ShadingContext& ctx, vec3 wo_f, double sample_count,
-                           long& evaluations) {
+double halfvector_integral(const cpu::ShadingPoint& point, vec3 wo_f, double sample_count, long& evaluations) {
   const dvec3 wo = test::to_double(wo_f);
   auto density = [&](const dvec3& h) -> double {
     double wo_h = glm::dot(wo, h);
     if (wo_h <= 0.0) return 0.0;
     dvec3 wi = 2.0 * wo_h * h - wo;
     if (wi.z <= 0.0) return 0.0;
-    return double(e.pdf(ctx, test::to_float(wi), wo_f)) * 4.0 * wo_h;
+    return double(point.pdf(test::to_float(wi), wo_f)) * 4.0 * wo_h;
   };
   test::SphericalQuadrature q(density, test::Frame(), {dvec3(0.0, 0.0, 1.0), glm::normalize(wo + dvec3(0.0, 0.0, 1.0))},
                               sample_count);
@@ -588,8 +587,8 @@ double halfvector_integral(const cpu::Evaluator& e, const ShadingContext& ctx, v
 
 SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
   auto start = std::chrono::steady_clock::now();
-  const cpu::Evaluator& e = c.example->evaluator;
-  const ShadingContext ctx = at_uv(c.uv);
+  // Every draw at one point: its stack resolved once (a textured example's would be per query).
+  const cpu::ShadingPoint point = c.example->evaluator.bind(at_uv(c.uv));
   const vec3 wo_f =
       glm::normalize(test::to_float(test::spherical(test::radians(c.theta_deg), test::radians(c.phi_deg))));
   const dvec3 wo = test::to_double(wo_f);
@@ -607,7 +606,7 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
   lobes.reserve(size_t(n));
   for (long i = 0; i < n; ++i) {
     vec2 u(to_unit_float(test::uniform(rng)), to_unit_float(test::uniform(rng)));
-    cpu::Sample s = e.sample(ctx, wo_f, u, to_unit_float(test::uniform(rng)));
+    cpu::Sample s = point.sample(wo_f, u, to_unit_float(test::uniform(rng)));
     if (!(s.pdf > 0.0f)) {
       ++r.failed;
       continue;
@@ -619,7 +618,7 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
   // Global grid: observed counts and expected counts by adaptive quadrature of pdf.
   auto density = [&](const dvec3& w) -> double {
     if (w.z <= 0.0) return 0.0;
-    return double(e.pdf(ctx, test::to_float(w), wo_f));
+    return double(point.pdf(test::to_float(w), wo_f));
   };
   const test::Frame up;
   std::vector<double> observed(kThetaBins * kPhiBins, 0.0), expected(kThetaBins * kPhiBins, 0.0);
@@ -652,7 +651,7 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
   // samples), when that radius is under 5 degrees, plus one bin for everything outside it.
   std::map<int, std::vector<double>> lobe_angles;
   for (size_t i = 0; i < directions.size(); ++i)
-    if (is_microfacet_lobe(e.lobe_name(size_t(lobes[i]))))
+    if (is_microfacet_lobe(c.example->evaluator.lobe_name(size_t(lobes[i]))))
       lobe_angles[lobes[i]].push_back(test::angle_between(directions[i], peak));
   double narrowest = 1.0e30;
   for (auto& [lobe, angles] : lobe_angles) {
@@ -710,7 +709,7 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
 
   // pdf is isotropic: the second integral only at phi = 0 (and not under the sanitisers).
   if (c.phi_deg == 0.0 && !test::kSanitized)
-    r.integral_halfvector = halfvector_integral(e, ctx, wo_f, n_d, r.evaluations);
+    r.integral_halfvector = halfvector_integral(point, wo_f, n_d, r.evaluations);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -893,20 +892,20 @@ TEST_CASE("sampling alone estimates the albedo: the mean of f cos / pdf over sam
     std::string worst_where;
     for (double theta : {0.0, 40.0, 70.0, 85.0}) {
       const vec3 wo = test::to_float(test::spherical(test::radians(theta), 0.0));
-      const ShadingContext ctx = at_uv(vec2(0.5f));
+      const cpu::ShadingPoint point = example.evaluator.bind(at_uv(vec2(0.5f)));
       std::mt19937_64 rng(0x5eed0009);
       dvec3 sum(0.0), sum2(0.0);
       const int side = int(std::sqrt(double(count)));
       for (int a = 0; a < side; ++a)
         for (int b = 0; b < side; ++b) {
           vec2 u(to_unit_float((a + test::uniform(rng)) / side), to_unit_float((b + test::uniform(rng)) / side));
-          cpu::Sample smp = example.evaluator.sample(ctx, wo, u, to_unit_float(test::uniform(rng)));
+          cpu::Sample smp = point.sample(wo, u, to_unit_float(test::uniform(rng)));
           dvec3 weight = smp.pdf > 0.0f ? test::to_double(smp.f) * double(smp.wi.z) / double(smp.pdf) : dvec3(0.0);
           sum += weight;
           sum2 += weight * weight;
         }
       const double n = double(side) * side;
-      const vec3 albedo = example.evaluator.albedo(ctx, wo);
+      const vec3 albedo = point.albedo(wo);
       for (int c = 0; c < 3; ++c) {
         const double mean = sum[c] / n;
         const double stderr_c = std::sqrt(std::max(sum2[c] / n - mean * mean, 0.0) / n);
