@@ -245,8 +245,8 @@ class MaterialEmitter final : public OpWriter {
           << at << "grid = " << vec2_literal(q.grid) << ";\n"
           << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
           << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
-          << at << "trap = " << vec4_literal(q.trap) << ";\n"
-          << at << "trap_medium = " << vec3_literal(q.trap_medium) << ";\n";
+          << at << "exit_cut = " << vec2_literal(q.exit_cut) << ";\n"
+          << at << "trap_gain = " << vec3_literal(q.trap_gain) << ";\n";
       }
       s << "}\n\n";
       return s.str();

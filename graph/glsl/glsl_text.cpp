@@ -20,11 +20,6 @@ std::string vec3_literal(glm::vec3 v) {
   return "vec3(" + float_literal(v.x) + ", " + float_literal(v.y) + ", " + float_literal(v.z) + ")";
 }
 
-std::string vec4_literal(glm::vec4 v) {
-  return "vec4(" + float_literal(v.x) + ", " + float_literal(v.y) + ", " + float_literal(v.z) + ", " +
-         float_literal(v.w) + ")";
-}
-
 std::string name_part(std::string_view id) {
   std::string out;
   for (char c : id) {

@@ -238,8 +238,8 @@ struct LaminaParams {
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
   vec3 cone_etas;   // with the indices it reads there (lamina_cone_etas)
-  vec4 trap;        // and what lamina_trap_gain needs that no direction changes (lamina_trap_resolve)
-  vec3 trap_medium;
+  vec2 exit_cut;    // and where its lobe leaves the exit cone (lamina_exit_cut)
+  vec3 trap_gain;   // and the share of its trapped light that leaves (lamina_trap_gain)
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -362,70 +362,92 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   return f * inside;
 }
 
+// What the boundary of layer i over a conductor reflects back down (E + M) of the light the metal
+// sends into the exit cone from an arriving angle theta under it: read at the mean angle of the
+// lobe's part inside the cone, not at theta. The in-plane angle of the lobe's reflected directions
+// is taken as normal about theta, of deviation sigma = sqrt(2) atan(m) (LaminaParams.exit_cut.y: twice
+// the RMS tilt of one slope component), cut at the cone's edge theta_e; the part inside has mean
+// theta - sigma phi(z) / Phi(z), z = (theta_e - theta) / sigma (the mean of a normal cut from above).
+// Light arriving near the edge, as a grazing view's does, sends its in-cone part well inside it,
+// where the boundary lets most of it out; read at theta itself, the echo took back what the carry
+// had already let out at each exit direction, and a rough varnish over a near-perfect mirror
+// reflected 1.05 at 89 degrees (and silver_paint was 9.6% too bright there against the reference,
+// 3.1% now). Arriving well inside the cone, z is large and this is E + M at theta itself, so a
+// smooth layer over a smooth metal keeps the closed form of two parallel mirrors.
+LAMINA_FN float lamina_exit_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                      LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float theta) {
+  vec2 edge = params[i].exit_cut;
+  float z = (edge.x - theta) / edge.y;
+  // Phi(z) and phi(z) = exp(-z^2 / 2) / sqrt(2 pi) of the standard normal.
+  float cut = max(0.5f * (1.0f + lamina_erf(z * 0.70710678f)), 1.0e-6f);
+  float mean = max(theta - edge.y * 0.39894228f * exp(-0.5f * z * z) / cut, 0.0f);
+  float eta = params[i].eta;
+  float sin_mean = sin(mean);
+  float mu_out = lamina_safe_sqrt(1.0f - eta * eta * sin_mean * sin_mean);
+  float multiple = 0.0f;
+  return lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_out, eta, multiple);
+}
+
 // Gamma of layer i over a conductor: the share of the light trapped outside its exit cone that
-// leaves, for light the metal reflected from cosine mu_start under the boundary, followed as one
-// stream at one cosine mu_o. Each time it crosses the medium and comes back (t(mu_o)^2) the metal
-// reflects a_in(mu_o) of it into the cone, where it leaves with the boundary's transmittance at the
-// middle of the cone's cosines or comes back; a_out(mu_o) stays trapped. Gamma = t_o^2 p / (1 - q),
-// the series of every return, p = a_in t T and q = a_out t_o^2 + a_in t^2 (1 - T); p + q <= a_all
-// <= 1, so it never exceeds 1. 0 where the boundary has no total reflection (eta <= 1).
+// leaves, followed as one stream at one cosine mu_o. Each time it crosses the medium and comes back
+// (t(mu_o)^2) the metal reflects a_in(mu_o) of it into the cone, where it leaves with the boundary's
+// transmittance T = 1 - R, R what it reflects of that part (lamina_exit_reflected), or comes back;
+// a_out(mu_o) stays trapped. Gamma = t_o^2 p / (1 - q), the series of every return, p = a_in t_c T
+// and q = a_out t_o^2 + a_in t_c^2 R, t_c the medium's transmittance in the middle of the cone;
+// p + q <= a_all <= 1, so it never exceeds 1. 0 where the boundary has no total reflection (eta <= 1).
 // Where the trapped light lies: a metal lobe of slope m tilts its normals by about atan(m) / sqrt(2)
 // in the plane of reflection (the RMS of one slope component), and turns the reflected direction by
 // twice that, so the part beyond the cone's edge lies on average sqrt(2 / pi) * 2 / sqrt(2) atan(m)
-// = 1.13 atan(m) beyond the edge (a half-normal's mean) when the light arrives at the edge, beyond
-// the mirror direction when it arrives outside the cone. mu_o is that angle's cosine, never more
-// grazing than the mean cosine 2 mu_c / 3 of light spread evenly outside the edge mu_c, which a
-// wide lobe approaches. (That mean alone, for every lobe, left the light a lobe traps just beyond
-// the edge, which soon returns into the cone, largely lost: gold_metallic_paint 5.6% to 8.3% low
-// between 40 and 70 degrees, within 2% with the trap's own angle. A narrow lobe under a smooth coat
-// now returns too much of it at grazing views: silver_paint 9.5% high at 89 degrees.)
+// = 1.13 atan(m) beyond the edge (a half-normal's mean) when the light arrives at the edge. Light
+// from above always arrives inside the cone (Snell's law), so the trapped part starts at the edge
+// whatever the direction, and Gamma is a constant of the shading point (LaminaParams.trap_gain).
+// mu_o is that angle's cosine, never more grazing than the mean cosine 2 mu_c / 3 of light spread
+// evenly outside the edge mu_c, which a wide lobe approaches. (That mean alone, for every lobe, left
+// the light a lobe traps just beyond the edge, which soon returns into the cone, largely lost:
+// gold_metallic_paint 5.6% to 8.3% low between 40 and 70 degrees, within 2% with the trap's own
+// angle.) Needs LaminaParams.cone_grid, cone_etas and exit_cut.
 const float LAMINA_TRAP_SPREAD = 1.13f;
 LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_start) {
-  if (params[i].eta <= 1.0f) return vec3(0.0f);
-  vec4 trap = params[i].trap;
-  float mu_o = cos(min(max(lamina_acos(mu_start), trap.x) + trap.z, trap.y));
+                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  float eta = params[i].eta;
+  if (eta <= 1.0f) return vec3(0.0f);
+  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
+  float turn = LAMINA_TRAP_SPREAD * atan(lamina_trap_slope(entries, params, i));
+  float theta_o = min(params[i].exit_cut.x + turn, lamina_acos(2.0f * mu_edge / 3.0f));
+  float mu_o = cos(theta_o);
   vec3 a_all = vec3(0.0f);
   vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
   vec3 a_out = max(a_all - a_in, vec3(0.0f));
   vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
-  vec3 t_c = params[i].trap_medium;
-  vec3 p = a_in * t_c * (1.0f - trap.w);
-  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * trap.w;
+  vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, 0.5f * (1.0f + mu_edge));
+  float back = lamina_exit_reflected(entries, params, i, theta_o);
+  vec3 p = a_in * t_c * (1.0f - back);
+  vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * back;
   return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
 }
 
-// What lamina_trap_gain needs of layer i over a conductor that no direction changes, once per
-// shading point (LaminaParams.trap): the angle of the cone's edge, the even spread's mean angle,
-// the lobe's turn 1.13 atan(m), and what the boundary reflects back down at the middle of the
-// cone's cosines (E + M); t_c, the medium's one-way transmittance there. 0 for eta <= 1, where
-// nothing is trapped.
-LAMINA_FN vec4 lamina_trap_resolve(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, LAMINA_OUT(vec3) t_c) {
-  t_c = vec3(0.0f);
+// Where lamina_exit_reflected cuts a conductor's lobe under layer i, once per shading point
+// (LaminaParams.exit_cut): the angle of the exit cone's edge and the deviation sqrt(2) atan(m) of
+// the metal's own lobe (at least 1e-4, so that a smooth metal cuts sharply). 0 for eta <= 1, where
+// there is no cone.
+LAMINA_FN vec2 lamina_exit_cut(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                               LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float eta = params[i].eta;
-  if (eta <= 1.0f) return vec4(0.0f);
-  float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
-  float mu_c = 0.5f * (1.0f + mu_edge);
-  float mu_c_out = lamina_safe_sqrt(1.0f - eta * eta * (1.0f - mu_c * mu_c));
-  float multiple = 0.0f;
-  float reflected =
-      lamina_boundary_energy(entries[i].distribution, entries[i].fresnel, params[i].grid, mu_c_out, eta, multiple);
-  t_c = one_way_absorption(params[i].absorption, params[i].thickness, mu_c);
-  float turn = LAMINA_TRAP_SPREAD * atan(lamina_trap_slope(entries, params, i));
-  return vec4(lamina_acos(mu_edge), lamina_acos(2.0f * mu_edge / 3.0f), turn, reflected);
+  if (eta <= 1.0f) return vec2(0.0f);
+  float deviation = max(1.41421356f * atan(params[max(entries[i].first, 0)].m), 1.0e-4f);
+  return vec2(lamina_acos(sqrt(1.0f - 1.0f / (eta * eta))), deviation);
 }
 
 // The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
 // boundary, whose reflection back down there (E + M at the outer cosine) is `reflected`; 0 for any
 // other base, and echo 1. Of what the metal reflects from there, a_in stays inside the exit cone, and
-// what of it leaves at once is the specular part's carry. What the boundary reflects back down
-// returns to the metal, which sends a_in t^2 E of it into the cone again each time: an echo near the
-// specular direction that multiplies the carry by echo = 1 / (1 - a_in t^2 E) (for smooth layers
-// exactly the series of two parallel mirrors). The rest, a_out = a_all - a_in of every return, goes
-// outside the cone, where the boundary reflects all of it back (total internal reflection); of that
-// light a share Gamma (lamina_trap_gain) leaves in the end, after travelling on
-// between metal and boundary. Returned: X = a_out echo Gamma.
+// what of it leaves at once is the specular part's carry. What the boundary reflects back down of
+// it, R (lamina_exit_reflected), returns to the metal, which sends a_in t^2 R of it into the cone
+// again each time: an echo near the specular direction that multiplies the carry by echo = 1 / (1 -
+// a_in t^2 R) (for smooth layers exactly the series of two parallel mirrors). The rest, a_out =
+// a_all - a_in of every return, goes outside the cone, where the boundary reflects all of it back
+// (total internal reflection); of that light a share Gamma (lamina_trap_gain) leaves in the end,
+// after travelling on between metal and boundary. Returned: X = a_out echo Gamma.
 LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                     LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_below,
                                     float reflected, LAMINA_OUT(vec3) echo) {
@@ -434,8 +456,12 @@ LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_
   vec3 a_all = vec3(0.0f);
   vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all);
   vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_below);
-  echo = 1.0f / max(vec3(1.0f) - a_in * t * t * reflected, vec3(1.0e-6f));
-  return max(a_all - a_in, vec3(0.0f)) * echo * lamina_trap_gain(entries, params, i, mu_below);
+  // Under total internal reflection the echo is what the boundary sends back of the part inside the
+  // cone (lamina_exit_reflected); with no cone (eta <= 1), of all of it, at mu_below itself.
+  float theta = lamina_acos(mu_below);
+  float back = params[i].eta > 1.0f ? lamina_exit_reflected(entries, params, i, theta) : reflected;
+  echo = 1.0f / max(vec3(1.0f) - a_in * t * t * back, vec3(1.0e-6f));
+  return max(a_all - a_in, vec3(0.0f)) * echo * params[i].trap_gain;
 }
 
 // The trapped light's way out, the forward part of layer i over a conductor:
@@ -630,8 +656,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.grid = vec2(0.0f);
     p.cone_grid = vec2(0.0f);
     p.cone_etas = vec3(0.0f);
-    p.trap = vec4(0.0f);
-    p.trap_medium = vec3(0.0f);
+    p.exit_cut = vec2(0.0f);
+    p.trap_gain = vec3(0.0f);
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -666,7 +692,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     if (lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(lamina_trap_slope(entries, params, i), max(params[i].eta, 1.0f));
       params[i].cone_etas = lamina_cone_etas(params[i].cone_grid);
-      params[i].trap = lamina_trap_resolve(entries, params, i, params[i].trap_medium);
+      params[i].exit_cut = lamina_exit_cut(entries, params, i);
+      params[i].trap_gain = lamina_trap_gain(entries, params, i);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }
     if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
