@@ -246,7 +246,8 @@ class MaterialEmitter final : public OpWriter {
           << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
           << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
           << at << "exit_cut = " << vec2_literal(q.exit_cut) << ";\n"
-          << at << "trap_gain = " << vec3_literal(q.trap_gain) << ";\n";
+          << at << "trap_gain = " << vec3_literal(q.trap_gain) << ";\n"
+          << at << "spread_own = " << float_literal(q.spread_own) << ";\n";
       }
       s << "}\n\n";
       return s.str();

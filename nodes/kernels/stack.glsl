@@ -240,6 +240,7 @@ struct LaminaParams {
   vec3 cone_etas;   // with the indices it reads there (lamina_cone_etas)
   vec2 exit_cut;    // and where its lobe leaves the exit cone (lamina_exit_cut)
   vec3 trap_gain;   // and the share of its trapped light that leaves (lamina_trap_gain)
+  float spread_own; // and the metal's slope on block C's grid if the boundary spreads wider (lamina_spread_own)
 };
 
 // --- the energy-conserving composition ---------------------------------------------------------
@@ -327,18 +328,30 @@ LAMINA_FN float lamina_trap_slope(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_ST
 // Of a conductor's light at cosine mu under layer i, the share inside the exit cone where the
 // boundary spreads it (lamina_trap_slope) relative to the metal's own lobe's, at most 1: what of
 // the specular part's carry, whose shape is the metal's own lobe, really leaves at once; the rest
-// is trapped (lamina_trapped_light counts it there). 1 where the metal's lobe is the wider.
+// is trapped (lamina_trapped_light counts it there). 1 where the metal's lobe is the wider. The
+// metal's own lobe is read on block C's grid at the same index as the spread's (cone_grid.x,
+// cone_etas) and at its own slope's coordinate, LaminaParams.spread_own (lamina_spread_own).
 LAMINA_FN float lamina_spread_kept(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu) {
-  int b = max(entries[i].first, 0);
-  if (lamina_trap_slope(entries, params, i) <= params[b].m) return 1.0f;
-  vec2 own = lamina_albedo_grid_xy(params[b].m, max(params[i].eta, 1.0f));
+  float own_y = params[i].spread_own;
+  if (own_y < 0.0f) return 1.0f;
+  int distribution = entries[max(entries[i].first, 0)].distribution;
   float whole_own = 0.0f;
   float whole = 0.0f;
-  float own_inside = lamina_conductor_cone_share(entries[b].distribution, own, lamina_cone_etas(own), mu, whole_own);
-  float inside =
-      lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
+  float own_inside = lamina_conductor_cone_share(distribution, vec2(params[i].cone_grid.x, own_y),
+                                                 params[i].cone_etas, mu, whole_own);
+  float inside = lamina_conductor_cone_share(distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
   return own_inside > 0.0f ? min(inside / own_inside, 1.0f) : 1.0f;
+}
+
+// The metal's own slope on block C's grid under layer i where the boundary spreads its light wider
+// than its lobe (lamina_trap_slope), once per shading point (LaminaParams.spread_own); -1 where the
+// metal's lobe is the wider, and lamina_spread_kept is 1.
+LAMINA_FN float lamina_spread_own(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  float m = params[max(entries[i].first, 0)].m;
+  if (lamina_trap_slope(entries, params, i) <= m) return -1.0f;
+  return lamina_albedo_grid_xy(m, max(params[i].eta, 1.0f)).y;
 }
 
 // Whether layer i lies on a conductor (the light its base traps: lamina_trapped_light).
@@ -658,6 +671,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.cone_etas = vec3(0.0f);
     p.exit_cut = vec2(0.0f);
     p.trap_gain = vec3(0.0f);
+    p.spread_own = -1.0f;
     int kind = entries[i].kind;
     bool degrees = entries[i].degrees != 0;
     if (kind == LAMINA_LAYER) {
@@ -692,6 +706,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     if (lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(lamina_trap_slope(entries, params, i), max(params[i].eta, 1.0f));
       params[i].cone_etas = lamina_cone_etas(params[i].cone_grid);
+      params[i].spread_own = lamina_spread_own(entries, params, i);
       params[i].exit_cut = lamina_exit_cut(entries, params, i);
       params[i].trap_gain = lamina_trap_gain(entries, params, i);
       params[i].forward = lamina_forward_coefficient(entries, params, i);

@@ -131,6 +131,7 @@ void main() {
   vec3 echo = vec3(0.0f);
   s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo) + echo + lamina_trap_gain(entries, params, 0);
   f += lamina_exit_reflected(entries, params, 0, c) + lamina_exit_cut(entries, params, 0).y;
+  f += lamina_spread_kept(entries, params, 0, c) + lamina_spread_own(entries, params, 0);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
   float whole = 0.0f;
   f += lamina_conductor_cone_share(1, lamina_albedo_grid_xy(m, 1.5f), lamina_cone_etas(lamina_albedo_grid_xy(m, 1.5f)), c,
