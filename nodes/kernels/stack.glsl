@@ -441,14 +441,15 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
 
 // Where lamina_exit_reflected cuts a conductor's lobe under layer i, once per shading point
 // (LaminaParams.exit_cut): the angle of the exit cone's edge and the deviation sqrt(2) atan(m) of
-// the metal's own lobe (at least 1e-4, so that a smooth metal cuts sharply). 0 for eta <= 1, where
-// there is no cone.
+// the metal's own lobe (at least 1e-4, so that a smooth metal cuts sharply). The edge is 0 for eta
+// <= 1, where there is no cone (and no caller reads it); the deviation stays positive, so that a
+// back end evaluating both sides of a select never divides by 0.
 LAMINA_FN vec2 lamina_exit_cut(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float eta = params[i].eta;
-  if (eta <= 1.0f) return vec2(0.0f);
   float deviation = max(1.41421356f * atan(params[max(entries[i].first, 0)].m), 1.0e-4f);
-  return vec2(lamina_acos(sqrt(1.0f - 1.0f / (eta * eta))), deviation);
+  float edge = eta > 1.0f ? lamina_acos(sqrt(1.0f - 1.0f / (eta * eta))) : 0.0f;
+  return vec2(edge, deviation);
 }
 
 // The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
