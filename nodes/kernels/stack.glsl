@@ -331,16 +331,15 @@ LAMINA_FN float lamina_trap_slope(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_ST
 // is trapped (lamina_trapped_light counts it there). 1 where the metal's lobe is the wider. The
 // metal's own lobe is read on block C's grid at the same index as the spread's (cone_grid.x,
 // cone_etas) and at its own slope's coordinate, LaminaParams.spread_own (lamina_spread_own).
+// inside is the spread's share at mu, which lamina_trapped_light has read already (its `inside`).
 LAMINA_FN float lamina_spread_kept(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu) {
+                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu, float inside) {
   float own_y = params[i].spread_own;
   if (own_y < 0.0f) return 1.0f;
   int distribution = entries[max(entries[i].first, 0)].distribution;
   float whole_own = 0.0f;
-  float whole = 0.0f;
   float own_inside = lamina_conductor_cone_share(distribution, vec2(params[i].cone_grid.x, own_y),
                                                  params[i].cone_etas, mu, whole_own);
-  float inside = lamina_conductor_cone_share(distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
   return own_inside > 0.0f ? min(inside / own_inside, 1.0f) : 1.0f;
 }
 
@@ -362,15 +361,14 @@ LAMINA_FN bool lamina_on_conductor(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_S
 
 // What a conductor base reflects of light arriving at cosine mu under layer i: a_in, inside the
 // boundary's exit cone, and a_all, over the whole hemisphere: F(mu) times the shares of its lobe
-// (lamina_conductor_cone_share).
+// (lamina_conductor_cone_share), whose share inside the cone is `inside`.
 LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                           LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu,
-                                          LAMINA_OUT(vec3) a_all) {
+                                          LAMINA_OUT(vec3) a_all, LAMINA_OUT(float) inside) {
   int b = max(entries[i].first, 0);
   vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
   float whole = 0.0f;
-  float inside =
-      lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
+  inside = lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
   a_all = f * whole;
   return f * inside;
 }
@@ -429,7 +427,8 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
   float theta_o = min(params[i].exit_cut.x + turn, lamina_acos(2.0f * mu_edge / 3.0f));
   float mu_o = cos(theta_o);
   vec3 a_all = vec3(0.0f);
-  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all);
+  float inside = 0.0f;
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_o, a_all, inside);
   vec3 a_out = max(a_all - a_in, vec3(0.0f));
   vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
   vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, 0.5f * (1.0f + mu_edge));
@@ -464,11 +463,12 @@ LAMINA_FN vec2 lamina_exit_cut(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK
 // after travelling on between metal and boundary. Returned: X = a_out echo Gamma.
 LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                     LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_below,
-                                    float reflected, LAMINA_OUT(vec3) echo) {
+                                    float reflected, LAMINA_OUT(vec3) echo, LAMINA_OUT(float) inside) {
   echo = vec3(1.0f);
+  inside = 1.0f;
   if (!lamina_on_conductor(entries, i) || mu_below <= 0.0f) return vec3(0.0f);
   vec3 a_all = vec3(0.0f);
-  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all);
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all, inside);
   vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_below);
   // Under total internal reflection the echo is what the boundary sends back of the part inside the
   // cone (lamina_exit_reflected); with no cone (eta <= 1), of all of it, at mu_below itself.
@@ -690,7 +690,8 @@ LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     float reflected = 0.0f;
     vec3 passage = lamina_layer_passage(entries[i], params[i], mu_out, below, gain, reflected);
     vec3 echo = vec3(1.0f);
-    sum += (weight * mu_out) * passage * lamina_trapped_light(entries, params, i, below, reflected, echo);
+    float inside = 0.0f;
+    sum += (weight * mu_out) * passage * lamina_trapped_light(entries, params, i, below, reflected, echo, inside);
   }
   vec3 norm = (2.0f * LAMINA_PI) * sum;
   return vec3(norm.x > 0.0f ? 1.0f / norm.x : 0.0f, norm.y > 0.0f ? 1.0f / norm.y : 0.0f,
@@ -900,11 +901,14 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       // rest leaves by the forward part; over any other base all are nothing.
       vec3 echo_l = vec3(1.0f);
       vec3 echo_v = vec3(1.0f);
-      vec3 trapped_l = lamina_trapped_light(entries, params, i, lb.z, reflected_l, echo_l);
-      vec3 trapped_v = lamina_trapped_light(entries, params, i, vb.z, reflected_v, echo_v);
+      float inside_l = 1.0f;
+      float inside_v = 1.0f;
+      vec3 trapped_l = lamina_trapped_light(entries, params, i, lb.z, reflected_l, echo_l, inside_l);
+      vec3 trapped_v = lamina_trapped_light(entries, params, i, vb.z, reflected_v, echo_v, inside_v);
       vec3 boost = min(echo_l, echo_v);
       if (lamina_on_conductor(entries, i) && lb.z > 0.0f && vb.z > 0.0f) {
-        float kept = min(lamina_spread_kept(entries, params, i, lb.z), lamina_spread_kept(entries, params, i, vb.z));
+        float kept = min(lamina_spread_kept(entries, params, i, lb.z, inside_l),
+                         lamina_spread_kept(entries, params, i, vb.z, inside_v));
         boost = boost * kept;
       }
       s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,

@@ -129,9 +129,10 @@ void main() {
   float reflected = 0.0f;
   s += lamina_layer_passage(entries[0], params[0], c, 0.5f, multiple, reflected) + reflected;
   vec3 echo = vec3(0.0f);
-  s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo) + echo + lamina_trap_gain(entries, params, 0);
+  float share_in = 0.0f;
+  s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo, share_in) + echo + lamina_trap_gain(entries, params, 0);
   f += lamina_exit_reflected(entries, params, 0, c) + lamina_exit_cut(entries, params, 0).y;
-  f += lamina_spread_kept(entries, params, 0, c) + lamina_spread_own(entries, params, 0);
+  f += lamina_spread_kept(entries, params, 0, c, share_in) + lamina_spread_own(entries, params, 0);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
   LaminaGuide guide = lamina_guide(entries, params, 1, 1.3f);
   s += lamina_guide_keep(entries, 1, guide, c) + lamina_gap_series_kept(s, s, c);
