@@ -4,12 +4,13 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 namespace lamina::glsl {
 
 struct KernelFile {
   const char* name;  // e.g. "fresnel.glsl"
-  const char* text;
+  std::string text;  // joined from the pieces the build embeds (cmake/embed_kernels.cmake)
 };
 
 std::span<const KernelFile> kernel_files();
