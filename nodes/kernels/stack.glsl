@@ -418,13 +418,19 @@ LAMINA_FN float lamina_exit_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMIN
 // gold_metallic_paint 5.6% to 8.3% low between 40 and 70 degrees, within 2% with the trap's own
 // angle.) Needs LaminaParams.cone_grid, cone_etas and exit_cut.
 const float LAMINA_TRAP_SPREAD = 1.13f;
+// The angle where a lobe of slope m puts the light it sends beyond an edge at angle theta_edge
+// (cosine mu_edge): LAMINA_TRAP_SPREAD atan(m) beyond it, never more grazing than the mean cosine
+// 2 mu_edge / 3 of light spread evenly beyond the edge. The trapped stream's (lamina_trap_gain) and
+// the guide's (lamina_guide).
+LAMINA_FN float lamina_beyond_edge_angle(float theta_edge, float mu_edge, float m) {
+  return min(theta_edge + LAMINA_TRAP_SPREAD * atan(m), lamina_acos(2.0f * mu_edge / 3.0f));
+}
 LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float eta = params[i].eta;
   if (eta <= 1.0f) return vec3(0.0f);
   float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
-  float turn = LAMINA_TRAP_SPREAD * atan(lamina_trap_slope(entries, params, i));
-  float theta_o = min(params[i].exit_cut.x + turn, lamina_acos(2.0f * mu_edge / 3.0f));
+  float theta_o = lamina_beyond_edge_angle(params[i].exit_cut.x, mu_edge, lamina_trap_slope(entries, params, i));
   float mu_o = cos(theta_o);
   vec3 a_all = vec3(0.0f);
   float inside = 0.0f;
@@ -541,9 +547,7 @@ LAMINA_FN LaminaGuide lamina_guide(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_S
   if (!g.guided) return g;
   g.etas = lamina_cone_etas(g.xy);
   float mu_edge = lamina_safe_sqrt(1.0f - 1.0f / (eta_w * eta_w));
-  float theta_w =
-      min(lamina_acos(mu_edge) + LAMINA_TRAP_SPREAD * atan(params[i].m), lamina_acos(2.0f * mu_edge / 3.0f));
-  float mu_w = cos(theta_w);
+  float mu_w = cos(lamina_beyond_edge_angle(lamina_acos(mu_edge), mu_edge, params[i].m));
   float whole = 0.0f;
   float inside = lamina_conductor_cone_share(entries[i].distribution, g.xy, g.etas, mu_w, whole);
   float h = whole > 0.0f ? clamp(inside / whole, 0.0f, 1.0f) : 1.0f;

@@ -135,6 +135,7 @@ void main() {
   f += lamina_spread_kept(entries, params, 0, c, share_in) + lamina_spread_own(entries, params, 0);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
   LaminaGuide guide = lamina_guide(entries, params, 1, 1.3f);
+  f += lamina_beyond_edge_angle(0.5f, c, m);
   s += lamina_guide_keep(entries, 1, guide, c) + lamina_gap_series_kept(s, s, c);
   float whole = 0.0f;
   f += lamina_conductor_cone_share(1, lamina_albedo_grid_xy(m, 1.5f), lamina_cone_etas(lamina_albedo_grid_xy(m, 1.5f)), c,
