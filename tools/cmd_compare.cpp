@@ -7,6 +7,7 @@
 #include "graph/cpu/compare.h"
 #include "tools/commands.h"
 #include "tools/figure_file.h"
+#include "tools/json_rgb.h"
 #include "tools/material_arg.h"
 #include "tools/output.h"
 #include "tools/plot_compare.h"
@@ -15,7 +16,7 @@ namespace lamina::cli {
 
 namespace {
 
-constexpr int64_t kMaxWalks = int64_t(1) << 28;
+constexpr int64_t kMaxCompareWalks = int64_t(1) << 28;
 
 struct CompareCliOptions {
   MaterialArg material;
@@ -28,10 +29,8 @@ struct CompareCliOptions {
   int size = kFigureDefaultSize;
 };
 
-nlohmann::json triple(glm::dvec3 v) { return {v.r, v.g, v.b}; }
-
 nlohmann::json value_json(const cpu::CompareValue& v) {
-  return {{"model", triple(v.model)}, {"reference", triple(v.reference)}, {"std_error", triple(v.std_error)}};
+  return {{"model", json_rgb(v.model)}, {"reference", json_rgb(v.reference)}, {"std_error", json_rgb(v.std_error)}};
 }
 
 void print_text(const cpu::Comparison& c, const CompareCliOptions& o) {
@@ -87,8 +86,8 @@ void print_json(const cpu::Comparison& c, const CompareCliOptions& o) {
 
 int run_compare(const CompareCliOptions& o) {
   for (auto [name, walks] : {std::pair{"--albedo-walks", o.albedo_walks}, std::pair{"--slice-walks", o.slice_walks}})
-    if (walks < 1 || walks > kMaxWalks) {
-      std::cerr << "lamina: " << name << ": " << walks << " is outside [1, " << kMaxWalks << "]\n";
+    if (walks < 1 || walks > kMaxCompareWalks) {
+      std::cerr << "lamina: " << name << ": " << walks << " is outside [1, " << kMaxCompareWalks << "]\n";
       return kExitInvalid;
     }
   const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);

@@ -7,13 +7,14 @@
 
 #include "graph/cpu/reference.h"
 #include "tools/commands.h"
+#include "tools/json_rgb.h"
 #include "tools/material_arg.h"
 
 namespace lamina::cli {
 
 namespace {
 
-constexpr int64_t kMaxWalks = int64_t(1) << 32;
+constexpr int64_t kMaxReferenceWalks = int64_t(1) << 32;
 constexpr int kMaxDepth = 1 << 20;
 
 struct ReferenceCliOptions {
@@ -29,11 +30,9 @@ struct ReferenceCliOptions {
   bool json = false;
 };
 
-nlohmann::json triple(glm::dvec3 v) { return {v.r, v.g, v.b}; }
-
 int run_reference(const ReferenceCliOptions& o) {
-  if (o.walks < 1 || o.walks > kMaxWalks) {
-    std::cerr << "lamina: --walks: " << o.walks << " is outside [1, " << kMaxWalks << "]\n";
+  if (o.walks < 1 || o.walks > kMaxReferenceWalks) {
+    std::cerr << "lamina: --walks: " << o.walks << " is outside [1, " << kMaxReferenceWalks << "]\n";
     return kExitInvalid;
   }
   if (o.max_depth < 1 || o.max_depth > kMaxDepth) {
@@ -71,11 +70,11 @@ int run_reference(const ReferenceCliOptions& o) {
       o.albedo ? cpu::reference_albedo(point, *wo, options) : cpu::reference_eval(point, *wi, *wo, options);
   const char* what = o.albedo ? "albedo" : "f";
   if (o.json) {
-    nlohmann::json report{{what, triple(r.value)},
-                          {"std_error", triple(r.std_error)},
+    nlohmann::json report{{what, json_rgb(r.value)},
+                          {"std_error", json_rgb(r.std_error)},
                           {"walks", r.walks},
                           {"truncated_walks", r.truncated_walks},
-                          {"truncated_weight", triple(r.truncated)},
+                          {"truncated_weight", json_rgb(r.truncated)},
                           {"seed", o.seed}};
     if (o.albedo) report["theta_deg"] = o.theta_deg;
     std::cout << report.dump() << "\n";

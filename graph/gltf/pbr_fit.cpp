@@ -134,15 +134,15 @@ struct Dim {
   float& of(PbrParams& p) const { return color_channel >= 0 ? p.specular_color[color_channel] : p.*scalar; }
 };
 
-const Dim kMetallic{&PbrParams::metallic, -1, 0.0f, 1.0f, 0.125f};
-const Dim kRoughness{&PbrParams::roughness, -1, 0.03f, 1.0f, 0.05f};
-const Dim kClearcoat{&PbrParams::clearcoat, -1, 0.0f, 1.0f, 0.125f};
-const Dim kCoatRoughness{&PbrParams::clearcoat_roughness, -1, 0.03f, 1.0f, 0.02f};
-const Dim kIor{&PbrParams::ior, -1, 1.05f, 3.0f, 0.1f};
-const Dim kSpecular{&PbrParams::specular, -1, 0.0f, 1.0f, 0.125f};
-const Dim kSpecularR{nullptr, 0, 0.0f, 10.0f, 0.25f};
-const Dim kSpecularG{nullptr, 1, 0.0f, 10.0f, 0.25f};
-const Dim kSpecularB{nullptr, 2, 0.0f, 10.0f, 0.25f};
+const Dim kDimMetallic{&PbrParams::metallic, -1, 0.0f, 1.0f, 0.125f};
+const Dim kDimRoughness{&PbrParams::roughness, -1, 0.03f, 1.0f, 0.05f};
+const Dim kDimClearcoat{&PbrParams::clearcoat, -1, 0.0f, 1.0f, 0.125f};
+const Dim kDimCoatRoughness{&PbrParams::clearcoat_roughness, -1, 0.03f, 1.0f, 0.02f};
+const Dim kDimIor{&PbrParams::ior, -1, 1.05f, 3.0f, 0.1f};
+const Dim kDimSpecular{&PbrParams::specular, -1, 0.0f, 1.0f, 0.125f};
+const Dim kDimSpecularR{nullptr, 0, 0.0f, 10.0f, 0.25f};
+const Dim kDimSpecularG{nullptr, 1, 0.0f, 10.0f, 0.25f};
+const Dim kDimSpecularB{nullptr, 2, 0.0f, 10.0f, 0.25f};
 
 struct Candidate {
   PbrParams params;
@@ -218,12 +218,12 @@ FitResult fit_pbr(const FitTarget& target) {
   PbrParams plain_start;
   plain_start.metallic = 0.0f;
   plain_start.roughness = 0.5f;
-  Candidate plain = grid(objective, plain_start, {{kMetallic, {0.0f, 0.5f, 1.0f}}, {kRoughness, roughness_grid}});
-  plain = descend(objective, plain, {kMetallic, kRoughness});
+  Candidate plain = grid(objective, plain_start, {{kDimMetallic, {0.0f, 0.5f, 1.0f}}, {kDimRoughness, roughness_grid}});
+  plain = descend(objective, plain, {kDimMetallic, kDimRoughness});
 
   FitResult result;
   Candidate best = plain;
-  std::vector<Dim> dims{kMetallic, kRoughness};
+  std::vector<Dim> dims{kDimMetallic, kDimRoughness};
 
   // KHR_materials_clearcoat: a second, usually sharper lobe over the base.
   {
@@ -233,12 +233,12 @@ FitResult fit_pbr(const FitTarget& target) {
     // would show as reflected environment the fit never paid for.
     start.clearcoat_roughness = 0.1f;
     Candidate coated = grid(objective, start,
-                            {{kCoatRoughness, {0.03f, 0.06f, 0.1f, 0.15f, 0.25f, 0.4f}},
-                             {kRoughness, {best.params.roughness, 0.3f, 0.6f, 1.0f}},
-                             {kMetallic, {best.params.metallic, 0.0f, 1.0f}}});
+                            {{kDimCoatRoughness, {0.03f, 0.06f, 0.1f, 0.15f, 0.25f, 0.4f}},
+                             {kDimRoughness, {best.params.roughness, 0.3f, 0.6f, 1.0f}},
+                             {kDimMetallic, {best.params.metallic, 0.0f, 1.0f}}});
     std::vector<Dim> coated_dims = dims;
-    coated_dims.push_back(kClearcoat);
-    coated_dims.push_back(kCoatRoughness);
+    coated_dims.push_back(kDimClearcoat);
+    coated_dims.push_back(kDimCoatRoughness);
     coated = descend(objective, coated, coated_dims);
     if (worth_keeping(coated.j, best.j, objective.target_j())) {
       best = coated;
@@ -248,9 +248,9 @@ FitResult fit_pbr(const FitTarget& target) {
   }
   // KHR_materials_ior: the dielectric's F0.
   {
-    Candidate with_ior = grid(objective, best.params, {{kIor, {1.2f, 1.33f, 1.5f, 1.7f, 2.0f, 2.5f}}});
+    Candidate with_ior = grid(objective, best.params, {{kDimIor, {1.2f, 1.33f, 1.5f, 1.7f, 2.0f, 2.5f}}});
     std::vector<Dim> ior_dims = dims;
-    ior_dims.push_back(kIor);
+    ior_dims.push_back(kDimIor);
     with_ior = descend(objective, with_ior, ior_dims);
     if (worth_keeping(with_ior.j, best.j, objective.target_j())) {
       best = with_ior;
@@ -261,7 +261,7 @@ FitResult fit_pbr(const FitTarget& target) {
   // KHR_materials_specular: the dielectric's specular strength and F0 colour.
   {
     std::vector<Dim> specular_dims = dims;
-    for (const Dim& d : {kSpecular, kSpecularR, kSpecularG, kSpecularB}) specular_dims.push_back(d);
+    for (const Dim& d : {kDimSpecular, kDimSpecularR, kDimSpecularG, kDimSpecularB}) specular_dims.push_back(d);
     Candidate with_specular = descend(objective, best, specular_dims);
     if (worth_keeping(with_specular.j, best.j, objective.target_j())) {
       best = with_specular;
