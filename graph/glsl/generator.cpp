@@ -290,38 +290,50 @@ class MaterialEmitter final : public OpWriter {
   // --- the functions: the kernels' composition on the resolved parameters ---------------------------
 
   void emit_functions(std::ostringstream& s) {
-    const std::string params = "  LaminaParams params[LAMINA_STACK];\n  " + fn("resolve") + "(ctx, params);\n";
     const std::string select =
         "  float weight[LAMINA_STACK];\n  vec3 v[LAMINA_STACK];\n  bool valid[LAMINA_STACK];\n"
         "  lamina_stack_select(" +
-        count() + ", " + entries() + ", params, wo, weight, v, valid);\n";
-    const std::string stack = count() + ", " + entries() + ", params";
+        count() + ", " + entries() + ", point.params, wo, weight, v, valid);\n";
+    const std::string stack = count() + ", " + entries() + ", point.params";
+    s << "// \"" << p_.name
+      << "\" at one shading context: its stack's parameters, resolved once (textures read,\n"
+         "// tables looked up) for any number of directions.\n";
+    s << "LaminaPoint " << fn("point") << "(LaminaContext ctx) {\n  LaminaPoint point;\n  " << fn("resolve")
+      << "(ctx, point.params);\n  return point;\n}\n\n";
     s << "// The BRDF f(wi, wo) of \"" << p_.name << "\", without the cosine; 0 below the horizon.\n";
-    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params;
+    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
     s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
     s << "// The density (per solid angle) with which " << fn("sample") << " draws wi.\n";
-    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaContext ctx) {\n";
-    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << params << select;
+    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << select;
     s << "  return lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n}\n\n";
     s << "// Draws wi for wo: u_layer chooses the lobe, u the direction in it. Returns f(wi, wo); pdf is\n"
          "// the density of wi over all lobes, 0 (with wi = 0) when nothing was drawn.\n";
     s << call("vec3 " + fn("sample"),
-              {"vec3 wo", "vec2 u", "float u_layer", "LaminaContext ctx", "out vec3 wi", "out float pdf"}, " {");
-    s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << params << select;
+              {"vec3 wo", "vec2 u", "float u_layer", "LaminaPoint point", "out vec3 wi", "out float pdf"}, " {");
+    s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << select;
     s << "  int chosen = lamina_stack_choose(" << count() << ", weight, u_layer);\n";
-    s << "  vec3 d = lamina_stack_sample(" << count() << ", " << entries() << ", params, v, chosen, u);\n";
+    s << "  vec3 d = lamina_stack_sample(" << count() << ", " << entries() << ", point.params, v, chosen, u);\n";
     s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
     s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
     s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
-    s << "// The same at a texture coordinate alone (the other members of the context at their defaults).\n";
-    s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, vec2 uv) {\n  return " << fn("eval")
-      << "(wi, wo, lamina_context(uv));\n}\n\n";
-    s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, vec2 uv) {\n  return " << fn("pdf")
-      << "(wi, wo, lamina_context(uv));\n}\n\n";
-    s << call("vec3 " + fn("sample"), {"vec3 wo", "vec2 u", "float u_layer", "vec2 uv", "out vec3 wi", "out float pdf"},
-              " {");
-    s << "  return " << fn("sample") << "(wo, u, u_layer, lamina_context(uv), wi, pdf);\n}\n\n";
+    // The same at a context and at a texture coordinate, each through the one above.
+    for (const char* where : {"LaminaContext ctx", "vec2 uv"}) {
+      const bool uv = where[0] == 'v';
+      const std::string at = uv ? fn("point") + "(lamina_context(uv))" : fn("point") + "(ctx)";
+      s << (uv ? "// The same at a texture coordinate alone (the other members of the context at their defaults).\n"
+               : "// The same at a shading context: each call resolves the point again.\n");
+      if (uv)
+        s << "LaminaPoint " << fn("point") << "(vec2 uv) {\n  return " << fn("point") << "(lamina_context(uv));\n}\n\n";
+      s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, " << where << ") {\n  return " << fn("eval") << "(wi, wo, "
+        << at << ");\n}\n\n";
+      s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, " << where << ") {\n  return " << fn("pdf") << "(wi, wo, " << at
+        << ");\n}\n\n";
+      s << call("vec3 " + fn("sample"), {"vec3 wo", "vec2 u", "float u_layer", where, "out vec3 wi", "out float pdf"},
+                " {");
+      s << "  return " << fn("sample") << "(wo, u, u_layer, " << at << ", wi, pdf);\n}\n\n";
+    }
   }
 
  public:
@@ -368,7 +380,10 @@ std::string header(std::span<const Program> programs, const Module& module, cons
        "//   float lamina_NAME_pdf(vec3 wi, vec3 wo, LaminaContext ctx)   density of wi under lamina_NAME_sample\n"
        "//   vec3  lamina_NAME_sample(vec3 wo, vec2 u, float u_layer, LaminaContext ctx, out vec3 wi, out float pdf)\n"
        "//         draws wi with u, u_layer uniform in [0, 1); returns f(wi, wo); pdf = 0 if none\n"
-       "// and the same three with a vec2 uv in place of ctx.\n";
+       "// and the same three with a vec2 uv in place of ctx. Each resolves the material's parameters at\n"
+       "// ctx first (textures, tables); for several directions at one point, resolve once:\n"
+       "//   LaminaPoint lamina_NAME_point(LaminaContext ctx)  (or vec2 uv)\n"
+       "// and pass the point in place of ctx to the same three.\n";
   for (const MaterialInterface& m : module.materials) {
     if (!m.block.empty()) {
       s << "//\n// uniform block " << m.block << " (instance " << m.instance << "), std140, " << m.block_size
@@ -485,7 +500,12 @@ Module generate(std::span<const Program> programs, const Options& options) {
     s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp usampler2D;\n";
   // The arrays of the kernels' composition hold the largest material's stack.
   s << "#define LAMINA_STACK " << stack_length << "\n\n";
-  s << table << kernels << code;
+  s << table << kernels;
+  s << "// ================================================================================\n"
+       "// A material's parameters at one shading context (lamina_NAME_point).\n"
+       "// ================================================================================\n\n"
+       "struct LaminaPoint {\n  LaminaParams params[LAMINA_STACK];\n};\n\n";
+  s << code;
   module.source = s.str();
   return module;
 }

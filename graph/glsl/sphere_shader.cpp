@@ -34,12 +34,12 @@ void main() {
       continue;
     }
     vec3 n = lamina_preview_normal(q);
-    vec2 uv = lamina_preview_uv(n);
+    LaminaPoint point = NAME_point(lamina_preview_uv(n));  // resolved once for the light and the sky
     vec3 wo = lamina_preview_local(LAMINA_PREVIEW_VIEW, n);
     vec3 wi = lamina_preview_local(LAMINA_PREVIEW_LIGHT, n);
     vec3 radiance = vec3(0.0f);
     if (wi.z > 0.0f) {
-      radiance = lamina_preview_light(NAME_eval(wi, wo, uv), wi);
+      radiance = lamina_preview_light(NAME_eval(wi, wo, point), wi);
     }
     // The sky once per pixel, at its first subsample on the sphere.
     if (lamina_ambient_radiance != vec3(0.0f) && !have_sky) {
@@ -49,7 +49,7 @@ void main() {
         vec3 p = lamina_preview_sky_point(i);
         vec3 w;
         float pdf;
-        vec3 f = NAME_sample(sky_view, p.xy, p.z, uv, w, pdf);
+        vec3 f = NAME_sample(sky_view, p.xy, p.z, point, w, pdf);
         weights += lamina_preview_sky_weight(f, w, pdf);
       }
       sky = lamina_preview_sky(weights, lamina_ambient_radiance);

@@ -2,9 +2,13 @@
 // real OpenGL implementation (Mesa llvmpipe through headless EGL) over a grid of (wi, wo, uv)
 // with grazing directions, and compares eval, pdf and sample with the CPU evaluator.
 //
-//   lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms]
+//   lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] [--entries point|uv]
 //                      [--perturb eval_scale|eval_nan|kernel_constant|sample_direction]
 //                      [--random N [--seed S]] [FILE...]
+//
+// --entries: the shader calls eval, pdf and sample with a LaminaPoint resolved once per query
+// (point, the default: how a renderer calls them) or with the texture coordinate (uv: each call
+// resolves the point again, through the entry points at a context and at a point).
 //
 // --random N adds N random valid materials (tests/random_stacks.h, seed S, default 1): nested
 // layers and mixes over every substrate with every distribution and Fresnel term, some parameters
@@ -105,6 +109,9 @@ std::vector<Query> make_queries() {
   return q;
 }
 
+// WHERE is the shading point's argument of the three functions: `point`, resolved once (the
+// default, as a renderer calls them), or `c.xy`, the texture coordinate, for the entry points that
+// resolve at every call (each through the next: uv, context, point).
 const char* kHarness = R"(
 // ---- parity harness: one query per fragment
 uniform sampler2D lamina_q_wi;
@@ -118,16 +125,19 @@ void main() {
   vec4 a = texelFetch(lamina_q_wi, at, 0);
   vec4 b = texelFetch(lamina_q_wo, at, 0);
   vec4 c = texelFetch(lamina_q_u, at, 0);
-  o_eval = vec4(NAME_eval(a.xyz, b.xyz, c.xy), NAME_pdf(a.xyz, b.xyz, c.xy));
+  LaminaPoint point = NAME_point(c.xy);
+  o_eval = vec4(NAME_eval(a.xyz, b.xyz, WHERE), NAME_pdf(a.xyz, b.xyz, WHERE));
   vec3 wi;
   float pdf;
-  vec3 f = NAME_sample(b.xyz, c.zw, a.w, c.xy, wi, pdf);
+  vec3 f = NAME_sample(b.xyz, c.zw, a.w, WHERE, wi, pdf);
   o_sample = vec4(wi, pdf);
   o_sample_f = vec4(f, 0.0f);
 }
 )";
 
-std::string harness(const std::string& prefix) { return glsl::replace_all(kHarness, "NAME", prefix); }
+std::string harness(const std::string& prefix, bool per_call) {
+  return glsl::replace_all(glsl::replace_all(kHarness, "WHERE", per_call ? "c.xy" : "point"), "NAME", prefix);
+}
 
 // |gpu - cpu| / max(1e-3 |cpu|, 1e-5): the error as a fraction of the eval and pdf tolerance,
 // widened to `spread` where the CPU is ill-conditioned. Infinite when either side is not finite.
@@ -204,6 +214,7 @@ struct Worst {
 struct Run {
   glsl::Target target;
   bool uniforms;
+  bool per_call;  // the entry points that resolve the point at every call (--entries uv)
 };
 
 // The checks of one run.
@@ -233,12 +244,14 @@ bool perturb(std::string& source, const std::string& prefix, int model, Perturba
     case Perturbation::None: return true;
     case Perturbation::EvalScale:
       return change(
-          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
-          "  return 1.01f * " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//");
+          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, point.params, wi, wo);\n}\n\n//",
+          "  return 1.01f * " + eval + "(" + prefix + "_count, " + prefix +
+              "_entries, point.params, wi, wo);\n}\n\n//");
     case Perturbation::EvalNan:  // a quiet NaN that depends on the query, so that no compiler folds it
-      return change("  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, params, wi, wo);\n}\n\n//",
-                    "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + eval + "(" + prefix + "_count, " +
-                        prefix + "_entries, params, wi, wo);\n}\n\n//");
+      return change(
+          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, point.params, wi, wo);\n}\n\n//",
+          "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + eval + "(" + prefix + "_count, " + prefix +
+              "_entries, point.params, wi, wo);\n}\n\n//");
     case Perturbation::KernelConstant:
       return change("const float LAMINA_INV_PI = 0.318309886183791f;", "const float LAMINA_INV_PI = 0.32f;");
     case Perturbation::SampleDirection:
@@ -266,7 +279,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
 
   const int width = 64, height = int((queries.size() + 63) / 64);
   gltest::Pass pass;
-  pass.fragment_source = module.source + harness(mi.prefix);
+  pass.fragment_source = module.source + harness(mi.prefix, run.per_call);
   pass.width = width;
   pass.height = height;
   pass.outputs = 3;
@@ -396,7 +409,7 @@ int broken_check_failures(const Checks& c, Perturbation kind) {
 int run_parity(int argc, char** argv) {
   std::vector<Run> runs;
   std::vector<std::string> files;
-  std::string targets = "330,450,es300", modes = "inline,uniforms";
+  std::string targets = "330,450,es300", modes = "inline,uniforms", entries = "point";
   Perturbation perturbation = Perturbation::None;
   bool usage_error = false;
   int random_count = 0;
@@ -408,6 +421,9 @@ int run_parity(int argc, char** argv) {
       targets = argv[++i];
     } else if (a == "--modes" && has_value) {
       modes = argv[++i];
+    } else if (a == "--entries" && has_value) {
+      entries = argv[++i];
+      usage_error = usage_error || (entries != "point" && entries != "uv");
     } else if (a == "--perturb" && has_value) {
       std::string kind = argv[++i];
       perturbation = kind == "eval_scale"         ? Perturbation::EvalScale
@@ -437,12 +453,12 @@ int run_parity(int argc, char** argv) {
     std::stringstream ms(modes);
     for (std::string m; std::getline(ms, m, ',');) {
       usage_error = usage_error || (m != "inline" && m != "uniforms");
-      runs.push_back({target, m == "uniforms"});
+      runs.push_back({target, m == "uniforms", entries == "uv"});
     }
   }
   if (usage_error || (files.empty() && random_count == 0)) {
     std::fprintf(stderr,
-                 "usage: lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] "
+                 "usage: lamina_glsl_parity [--targets 330,450,es300] [--modes inline,uniforms] [--entries point|uv] "
                  "[--perturb eval_scale|eval_nan|kernel_constant|sample_direction] [--random N [--seed S]] "
                  "[FILE...]\n");
     return 2;

@@ -369,11 +369,11 @@ TEST_CASE("a coat over a near-perfect mirror never reflects more than it receive
   // and pair of roughnesses below, with Elek's clamp and without (a rough coat over a smoother
   // metal), from normal incidence to 89 degrees, densest where the trapped light is most (grazing):
   // no channel above 1 + 0.005, the furnace test's tolerance, on the finer quadrature where the
-  // coarse one comes near 1.
+  // coarse one comes near 1. Under the sanitisers, every fourth stack.
   const std::vector<double> angles = test::kSanitized
                                          ? std::vector<double>{0.0, 60.0, 85.0, 89.0}
                                          : std::vector<double>{0.0, 30.0, 60.0, 75.0, 80.0, 85.0, 87.0, 89.0};
-  int stacks = 0;
+  int stacks = 0, combination = 0;
   double largest = 0.0;
   for (const char* ior : {"1.2", "1.5", "2.0", "2.6"})
     for (const char* distribution : {"ggx", "beckmann"})
@@ -390,6 +390,7 @@ TEST_CASE("a coat over a near-perfect mirror never reflects more than it receive
               {"id": "mirror", "type": "substrate/conductor", "n": [0.1, 0.1, 0.1], "k": [40.0, 40.0, 40.0],
                "roughness_deg": )" + metal +
                                      R"(, "distribution": ")" + distribution + R"("}]}]})";
+            if (test::kSanitized && combination++ % 4 != 0) continue;
             cpu::Evaluator e = test::evaluator_from_text(text);
             ++stacks;
             for (double theta : angles) {
