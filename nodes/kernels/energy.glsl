@@ -218,3 +218,11 @@ LAMINA_FN float lamina_conductor_cone_share(int distribution, vec2 xy, vec3 etas
                 1.0f);
   return clamp(mix(below, above, fx), 0.0f, 1.0f);
 }
+
+// The share of the lobe lamina_conductor_cone_share reads that lies beyond the cone's edge: 1 -
+// inside / whole, 0 where the table holds no lobe there (whole 0).
+LAMINA_FN float lamina_cone_share_beyond(int distribution, vec2 xy, vec3 etas, float mu) {
+  float whole = 0.0f;
+  float inside = lamina_conductor_cone_share(distribution, xy, etas, mu, whole);
+  return whole > 0.0f ? clamp(1.0f - inside / whole, 0.0f, 1.0f) : 0.0f;
+}

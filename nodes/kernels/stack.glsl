@@ -548,9 +548,7 @@ LAMINA_FN LaminaGuide lamina_guide(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_S
   g.etas = lamina_cone_etas(g.xy);
   float mu_edge = lamina_safe_sqrt(1.0f - 1.0f / (eta_w * eta_w));
   float mu_w = cos(lamina_beyond_edge_angle(lamina_acos(mu_edge), mu_edge, params[i].m));
-  float whole = 0.0f;
-  float inside = lamina_conductor_cone_share(entries[i].distribution, g.xy, g.etas, mu_w, whole);
-  float h = whole > 0.0f ? clamp(inside / whole, 0.0f, 1.0f) : 1.0f;
+  float h = 1.0f - lamina_cone_share_beyond(entries[i].distribution, g.xy, g.etas, mu_w);
   vec3 t_w = one_way_absorption(params[i].absorption, params[i].thickness, mu_w);
   vec3 t2 = t_w * t_w;
   g.gain = t2 * h / max(vec3(1.0f) - t2 * (1.0f - h), vec3(1.0e-6f));
@@ -563,9 +561,7 @@ LAMINA_FN LaminaGuide lamina_guide(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_S
 LAMINA_FN vec3 lamina_guide_keep(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK], int i,
                                  LAMINA_IN(LaminaGuide) guide, float mu) {
   if (!guide.guided) return vec3(1.0f);
-  float whole = 0.0f;
-  float inside = lamina_conductor_cone_share(entries[i].distribution, guide.xy, guide.etas, mu, whole);
-  float s = whole > 0.0f ? clamp(1.0f - inside / whole, 0.0f, 1.0f) : 0.0f;
+  float s = lamina_cone_share_beyond(entries[i].distribution, guide.xy, guide.etas, mu);
   return vec3(1.0f) - s * (vec3(1.0f) - guide.gain);
 }
 
@@ -1032,10 +1028,8 @@ LAMINA_FN float lamina_forward_sampling_share(LAMINA_IN_ARRAY(LaminaEntry) entri
   bool has_forward = entries[i].parent >= 0 && lamina_on_conductor(entries, parent) &&
                      max(forward.x, max(forward.y, forward.z)) > 0.0f;
   if (!has_forward) return 0.0f;
-  float whole = 0.0f;
-  float inside = lamina_conductor_cone_share(entries[i].distribution, params[parent].cone_grid,
-                                             params[parent].cone_etas, v.z, whole);
-  float trapped = whole > 0.0f ? 1.0f - inside / whole : 1.0f;
+  float trapped =
+      lamina_cone_share_beyond(entries[i].distribution, params[parent].cone_grid, params[parent].cone_etas, v.z);
   return clamp(trapped, LAMINA_FORWARD_DRAWN, 1.0f - LAMINA_FORWARD_DRAWN);
 }
 
