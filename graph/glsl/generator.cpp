@@ -318,10 +318,10 @@ class MaterialEmitter final : public OpWriter {
     s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
     s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
     s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
-    // The same at a context and at a texture coordinate, each through the one above.
+    // The same at a context, through the point, and at a texture coordinate, through the context.
     for (const char* where : {"LaminaContext ctx", "vec2 uv"}) {
       const bool uv = where[0] == 'v';
-      const std::string at = uv ? fn("point") + "(lamina_context(uv))" : fn("point") + "(ctx)";
+      const std::string at = uv ? std::string("lamina_context(uv)") : fn("point") + "(ctx)";
       s << (uv ? "// The same at a texture coordinate alone (the other members of the context at their defaults).\n"
                : "// The same at a shading context: each call resolves the point again.\n");
       if (uv)
