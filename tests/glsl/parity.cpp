@@ -233,7 +233,9 @@ enum class Perturbation { None, EvalScale, EvalNan, KernelConstant, SampleDirect
 // A deliberately wrong module; false when the text to change is missing (then the perturbation
 // proves nothing).
 bool perturb(std::string& source, const std::string& prefix, int model, Perturbation kind) {
-  const std::string eval = glsl::composition_function(model);
+  // The composition's call that ends the point's eval (and sample), as the generator writes it.
+  const std::string call = std::string(glsl::composition_function(model)) + "(" + prefix + "_count, " + prefix +
+                           "_entries, point.params, wi, wo);\n}\n\n//";
   auto change = [&](const std::string& from, const std::string& to) {
     std::string changed = glsl::replace_all(source, from, to);
     bool found = changed != source;
@@ -242,16 +244,9 @@ bool perturb(std::string& source, const std::string& prefix, int model, Perturba
   };
   switch (kind) {
     case Perturbation::None: return true;
-    case Perturbation::EvalScale:
-      return change(
-          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, point.params, wi, wo);\n}\n\n//",
-          "  return 1.01f * " + eval + "(" + prefix + "_count, " + prefix +
-              "_entries, point.params, wi, wo);\n}\n\n//");
+    case Perturbation::EvalScale: return change("  return " + call, "  return 1.01f * " + call);
     case Perturbation::EvalNan:  // a quiet NaN that depends on the query, so that no compiler folds it
-      return change(
-          "  return " + eval + "(" + prefix + "_count, " + prefix + "_entries, point.params, wi, wo);\n}\n\n//",
-          "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + eval + "(" + prefix + "_count, " + prefix +
-              "_entries, point.params, wi, wo);\n}\n\n//");
+      return change("  return " + call, "  return uintBitsToFloat(0x7fc00000u + uint(wi.z < 0.5f)) * " + call);
     case Perturbation::KernelConstant:
       return change("const float LAMINA_INV_PI = 0.318309886183791f;", "const float LAMINA_INV_PI = 0.32f;");
     case Perturbation::SampleDirection:
