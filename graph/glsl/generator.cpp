@@ -421,7 +421,13 @@ std::string albedo_table(std::span<const Program> programs, Module& module) {
     for (const StackEntry& e : p.stack) {
       if (p.model != kernels::LAMINA_MODEL_ENERGY_CONSERVING) continue;
       const kernels::LaminaEntry k = kernel_entry(e, true);
-      if (k.kind == kernels::LAMINA_LAYER) used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
+      // A layer's boundary reads its own combination, and the shares of its reflection lobe beyond a
+      // guide's edge (block C: lamina_guide, lamina_guide_entry_keep) from the exact-Fresnel one of
+      // its distribution, whatever its Fresnel term.
+      if (k.kind == kernels::LAMINA_LAYER) {
+        used[size_t(kernels::lamina_albedo_combo(k.distribution, k.fresnel))] = true;
+        used[size_t(kernels::lamina_albedo_combo(k.distribution, 0))] = true;
+      }
       // A conductor under a layer (lamina_on_conductor): the share of its lobe inside the layer's exit
       // cone (block C), read from the exact-Fresnel combination of its distribution.
       const bool under_layer = e.parent >= 0 && p.stack[size_t(e.parent)].kind == kernels::LAMINA_LAYER;
