@@ -17,6 +17,34 @@ LAMINA_FN vec3 refract_down(vec3 w, float eta) {
   return vec3(w.x * inv_eta, w.y * inv_eta, sqrt(1.0f - sin2_below));
 }
 
+// The mean angle below a rough boundary of slope m (eta as above) at which light arriving from
+// above at cosine mu travels on, as a cosine; mu_below, the smooth refraction's, where m is 0.
+// Light meets the facets it sees, weighted by their projected area: in the plane of incidence a
+// slope x towards the light counts (cot theta + x)+, so with the slopes normal of deviation
+// sigma = m / sqrt(2) per component (Beckmann's; taken for every distribution) the facets seen tilt
+// on average by sigma Phi(z) / (phi(z) + z Phi(z)) towards it, z = cot(theta) / sigma (the mean of a
+// normal variable under that linear weight). Refracted through a facet tilted by delta, light goes
+// on at asin(sin(theta - delta) / eta) + delta from the normal: beyond the smooth refraction's
+// angle, by far at grazing incidence, where only facets facing the light are seen. Against the
+// reference solver's first directions below a 10-degree coat of 1.5, the mean angle is 36.2 degrees
+// for light from 60 degrees (36.3 in the walks), 44.7 from 80 (46.0) and 49.5 from 89 (51.0);
+// the smooth refraction's is 41.8 from 89, the exit cone's edge.
+LAMINA_FN float lamina_arrival_cosine(float mu, float mu_below, float eta, float m) {
+  float c = clamp(mu, 0.0f, 1.0f);
+  float sine = lamina_safe_sqrt(1.0f - c * c);
+  float sigma = max(m * 0.70710678f, 1.0e-6f);
+  float z = c / max(sine, 1.0e-6f) / sigma;
+  float below_z = 0.5f * (1.0f + lamina_erf(z * 0.70710678f));
+  float density = 0.39894228f * exp(-0.5f * z * z);
+  float slope = sigma * below_z / max(density + z * below_z, 1.0e-12f);
+  // cos and sin of delta = atan(slope), then of the refracted angle through the facet, then of their sum.
+  float cos_d = 1.0f / sqrt(1.0f + slope * slope);
+  float sin_d = slope * cos_d;
+  float sin_t = clamp((sine * cos_d - c * sin_d) / max(eta, 1.0e-6f), -1.0f, 1.0f);
+  float cos_t = lamina_safe_sqrt(1.0f - sin_t * sin_t);
+  return m > 0.0f ? max(cos_t * cos_d - sin_t * sin_d, 0.0f) : mu_below;
+}
+
 // The inverse of refract_down: a direction below the boundary to the one above it.
 // Returns vec3(0) when w is below the horizon, eta <= 0, or the ray cannot leave (total internal
 // reflection, eta > 1).

@@ -281,6 +281,54 @@ struct LaminaParams {
 // Fresnel term at the arriving direction's cosine: an estimate, not a bound, which the strict
 // furnace test checks), so no stack reflects more than it receives.
 
+// Gauss-Legendre nodes and weights on [0, 1], five points (exact for polynomials of degree 9).
+LAMINA_FN float lamina_gauss5_node(int i) {
+  float x = i == 0 ? -0.906179845938664f
+          : i == 1 ? -0.538469310105683f
+          : i == 2 ? 0.0f
+          : i == 3 ? 0.538469310105683f
+                   : 0.906179845938664f;
+  return 0.5f + 0.5f * x;
+}
+LAMINA_FN float lamina_gauss5_weight(int i) {
+  float w = (i == 0 || i == 4) ? 0.236926885056189f : (i == 1 || i == 3) ? 0.478628670499366f : 0.568888888888889f;
+  return 0.5f * w;
+}
+
+// What a rough boundary lets through beyond its critical angle, seen from its denser side: eta =
+// n_other / n_dense < 1, xy its grid coordinates at eta and xy_other at 1 / eta (the other side).
+// The table holds a boundary's cosines beyond its critical angle as the edge's, so the light that
+// crosses there comes from reciprocity: light of radiance L on the dense side leaves into a direction
+// of cosine mu on the other with radiance L T_o(mu) / eta^2 (T_o = 1 - E - M of the other side), and
+// what it sends through the cone is 2 pi L int_cone T(mu) mu dmu (T this side's), so the share
+//   g = 1 - int_cone T mu dmu / (eta^2 int T_o mu dmu)
+// of what crosses leaves from beyond the edge mu_e. There T falls from T(mu_e) to 0: as a ramp with
+// g's flux G = eta^2 int T_o mu dmu - int_cone T mu dmu, of width w = 2 G / (T(mu_e) mu_e) in the
+// cosine (GGX's heavier tails fall more like exp(-2 x / w), x the cosine's distance past the edge,
+// which has the same integral). Against the boundary's own random walks (the reference's
+// interfaces), from a 14-degree Beckmann boundary of 1.45 under 1.7 g is 0.080 for 0.074, and
+// beyond a 17-degree Beckmann one of 1.35 the ramp is within 0.01 of the walks' T for 12 degrees
+// past the edge. Returned: (T(mu_e), w, g).
+LAMINA_FN vec3 lamina_edge_ramp(int distribution, int fresnel, vec2 xy, vec2 xy_other, float eta) {
+  float mu_edge = lamina_safe_sqrt(1.0f - eta * eta);
+  float multiple = 0.0f;
+  float cone = 0.0f;
+  float whole = 0.0f;
+  for (int q = 0; q < 5; ++q) {
+    float weight = lamina_gauss5_weight(q);
+    float x = lamina_gauss5_node(q);
+    float mu = mix(mu_edge, 1.0f, x);
+    cone += weight * (1.0f - mu_edge) * mu *
+            (1.0f - lamina_boundary_energy(distribution, fresnel, xy, mu, eta, multiple));
+    whole += weight * x * (1.0f - lamina_boundary_energy(distribution, fresnel, xy_other, x, 1.0f / eta, multiple));
+  }
+  float guided = max(eta * eta * whole - cone, 0.0f);
+  float g = whole > 0.0f ? guided / (eta * eta * whole) : 0.0f;
+  float t_edge = 1.0f - lamina_boundary_energy(distribution, fresnel, xy, mu_edge, eta, multiple);
+  float width = min(2.0f * guided / max(t_edge * mu_edge, 1.0e-6f), mu_edge);
+  return vec3(t_edge, width, g);
+}
+
 // The cosine of a direction of cosine mu refracted below a boundary of relative index eta, as
 // refract_down computes it; 0 when it cannot enter.
 LAMINA_FN float lamina_cosine_below(float mu, float eta) {
@@ -325,17 +373,18 @@ LAMINA_FN float lamina_trap_slope(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_ST
   return max(params[entries[i].first].m, boundary);
 }
 
-// Of a conductor's light at cosine mu under layer i, the share inside the exit cone where the
-// boundary spreads it (lamina_trap_slope) relative to the metal's own lobe's, at most 1: what of
-// the specular part's carry, whose shape is the metal's own lobe, really leaves at once; the rest
-// is trapped (lamina_trapped_light counts it there). 1 where the metal's lobe is the wider. The
-// metal's own lobe is read on block C's grid at the same index as the spread's (cone_grid.x,
-// cone_etas) and at its own slope's coordinate, LaminaParams.spread_own (lamina_spread_own).
-// inside is the spread's share at mu, which lamina_trapped_light has read already (its `inside`).
+// Of a conductor's light under layer i, the share inside the exit cone where it really goes,
+// relative to the metal's own lobe's at the smooth refraction's cosine mu, at most 1: what of the
+// specular part's carry, whose shape is the metal's own lobe at mu, really leaves at once; the rest
+// is trapped (lamina_trapped_light counts it there). Really: where the boundary spreads it
+// (lamina_trap_slope), from where it arrives (lamina_arrival_cosine); that share is `inside`, which
+// lamina_trapped_light has read already. The metal's own lobe is read on block C's grid at the same
+// index (cone_grid.x, cone_etas), at its own slope's coordinate: LaminaParams.spread_own where the
+// spread is the wider (lamina_spread_own), else the grid's own. For a smooth boundary over a metal
+// wider than its spread, both reads are the same and the share is 1.
 LAMINA_FN float lamina_spread_kept(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu, float inside) {
-  float own_y = params[i].spread_own;
-  if (own_y < 0.0f) return 1.0f;
+  float own_y = params[i].spread_own < 0.0f ? params[i].cone_grid.y : params[i].spread_own;
   int distribution = entries[max(entries[i].first, 0)].distribution;
   float whole_own = 0.0f;
   float own_inside = lamina_conductor_cone_share(distribution, vec2(params[i].cone_grid.x, own_y),
@@ -345,7 +394,7 @@ LAMINA_FN float lamina_spread_kept(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_S
 
 // The metal's own slope on block C's grid under layer i where the boundary spreads its light wider
 // than its lobe (lamina_trap_slope), once per shading point (LaminaParams.spread_own); -1 where the
-// metal's lobe is the wider, and lamina_spread_kept is 1.
+// metal's lobe is the wider, where block C's grid is at the metal's own slope already.
 LAMINA_FN float lamina_spread_own(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float m = params[max(entries[i].first, 0)].m;
@@ -403,9 +452,11 @@ LAMINA_FN float lamina_exit_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMIN
 // leaves, followed as one stream at one cosine mu_o. Each time it crosses the medium and comes back
 // (t(mu_o)^2) the metal reflects a_in(mu_o) of it into the cone, where it leaves with the boundary's
 // transmittance T = 1 - R, R what it reflects of that part (lamina_exit_reflected), or comes back;
-// a_out(mu_o) stays trapped. Gamma = t_o^2 p / (1 - q), the series of every return, p = a_in t_c T
+// a_out(mu_o) stays trapped. Gamma_0 = t_o^2 p / (1 - q), the series of every return, p = a_in t_c T
 // and q = a_out t_o^2 + a_in t_c^2 R, t_c the medium's transmittance in the middle of the cone;
-// p + q <= a_all <= 1, so it never exceeds 1. 0 where the boundary has no total reflection (eta <= 1).
+// p + q <= a_all <= 1, so it never exceeds 1. A rough boundary also lets a share d of the stream
+// out at its first return, just beyond the edge (see below): Gamma = t_o d + (1 - d) Gamma_0, at
+// most 1 too. 0 where the boundary has no total reflection (eta <= 1).
 // Where the trapped light lies: a metal lobe of slope m tilts its normals by about atan(m) / sqrt(2)
 // in the plane of reflection (the RMS of one slope component), and turns the reflected direction by
 // twice that, so the part beyond the cone's edge lies on average sqrt(2 / pi) * 2 / sqrt(2) atan(m)
@@ -439,9 +490,29 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
   vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, mu_o);
   vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, 0.5f * (1.0f + mu_edge));
   float back = lamina_exit_reflected(entries, params, i, theta_o);
+  // A rough boundary lets part of the trapped light out at its first return, where it lies just
+  // beyond the edge (lamina_edge_ramp): d, the ramp's T averaged over where the metal's lobe puts
+  // it, beyond the edge by the half-normal of mean LAMINA_TRAP_SPREAD atan(m) in angle (deviation
+  // sigma = 1.416 atan(m)); for the ramp of width w_a in angle, E[(1 - X / w_a)+] =
+  // erf(w_a / (sigma sqrt 2)) - sigma sqrt(2 / pi) (1 - exp(-w_a^2 / (2 sigma^2))) / w_a, for
+  // GGX's exponential E[exp(-2 X / w_a)] = exp(s^2) erfc(s), s = sqrt(2) sigma / w_a. What it does
+  // not let out goes on as before: Gamma = t_o d + (1 - d) Gamma_0.
+  float d = 0.0f;
+  if (params[i].m > 0.0f) {
+    vec3 ramp = lamina_edge_ramp(entries[i].distribution, entries[i].fresnel,
+                                 lamina_albedo_grid_xy(params[i].m, 1.0f / eta), params[i].grid, 1.0f / eta);
+    float theta_e = params[i].exit_cut.x;
+    float w = max(ramp.y / max(sin(theta_e), 1.0e-3f), 1.0e-6f);
+    float sigma = max(1.41614f * atan(lamina_trap_slope(entries, params, i)), 1.0e-4f);
+    float below = lamina_erf(w / (sigma * 1.41421356f));
+    float mean_below = sigma * 0.79788456f * (1.0f - exp(-0.5f * w * w / (sigma * sigma)));
+    float ramp_mean = below - mean_below / w;
+    float exp_mean = lamina_erfc_poly(2.0f * sigma / (w * 1.41421356f));
+    d = ramp.x * (entries[i].distribution == 2 ? exp_mean : ramp_mean);
+  }
   vec3 p = a_in * t_c * (1.0f - back);
   vec3 q = a_out * t_o * t_o + a_in * t_c * t_c * back;
-  return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
+  return t_o * d + (1.0f - d) * t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
 }
 
 // Where lamina_exit_reflected cuts a conductor's lobe under layer i, once per shading point
@@ -457,24 +528,29 @@ LAMINA_FN vec2 lamina_exit_cut(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK
   return vec2(edge, deviation);
 }
 
-// The light a conductor traps under layer i, for light reaching it at cosine mu_below under the
-// boundary, whose reflection back down there (E + M at the outer cosine) is `reflected`; 0 for any
-// other base, and echo 1. Of what the metal reflects from there, a_in stays inside the exit cone, and
-// what of it leaves at once is the specular part's carry. What the boundary reflects back down of
-// it, R (lamina_exit_reflected), returns to the metal, which sends a_in t^2 R of it into the cone
-// again each time: an echo near the specular direction that multiplies the carry by echo = 1 / (1 -
-// a_in t^2 R) (for smooth layers exactly the series of two parallel mirrors). The rest, a_out =
-// a_all - a_in of every return, goes outside the cone, where the boundary reflects all of it back
-// (total internal reflection); of that light a share Gamma (lamina_trap_gain) leaves in the end,
-// after travelling on between metal and boundary. Returned: X = a_out echo Gamma.
+// The light a conductor traps under layer i, for light from outer cosine mu (mu_below under the
+// boundary by Snell's law), whose reflection back down there (E + M at mu) is `reflected`; 0 for
+// any other base, and echo 1. A rough boundary sends the light on deeper than mu_below: it reaches
+// the metal at lamina_arrival_cosine, where what the metal reflects is split. Of it, a_in stays
+// inside the exit cone, and what of that leaves at once is the specular part's carry, whose shape
+// is the metal's lobe at mu_below. What the boundary reflects back down of it, R
+// (lamina_exit_reflected, read for that lobe), returns to the metal, which sends a_in t^2 R of it
+// into the cone again each time: an echo near the specular direction that multiplies the carry by
+// echo = 1 / (1 - a_in t^2 R) (for smooth layers exactly the series of two parallel mirrors). (Read
+// where the light arrives instead, R is that of a lobe nearer the edge than the carry's, and a
+// 15-degree coat of 2.0 over a near-perfect 1-degree mirror reflected 1.012 at 80 degrees.) The
+// rest, a_out = a_all - a_in of every return, goes outside the cone, where the boundary reflects
+// nearly all of it back; of that light a share Gamma (lamina_trap_gain) leaves in the end, after
+// travelling on between metal and boundary. Returned: X = a_out echo Gamma.
 LAMINA_FN vec3 lamina_trapped_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu_below,
-                                    float reflected, LAMINA_OUT(vec3) echo, LAMINA_OUT(float) inside) {
+                                    LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu,
+                                    float mu_below, float reflected, LAMINA_OUT(vec3) echo, LAMINA_OUT(float) inside) {
   echo = vec3(1.0f);
   inside = 1.0f;
   if (!lamina_on_conductor(entries, i) || mu_below <= 0.0f) return vec3(0.0f);
+  float arrive = lamina_arrival_cosine(mu, mu_below, params[i].eta, params[i].m);
   vec3 a_all = vec3(0.0f);
-  vec3 a_in = lamina_conductor_reflected(entries, params, i, mu_below, a_all, inside);
+  vec3 a_in = lamina_conductor_reflected(entries, params, i, arrive, a_all, inside);
   vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_below);
   // Under total internal reflection the echo is what the boundary sends back of the part inside the
   // cone (lamina_exit_reflected); with no cone (eta <= 1), of all of it, at mu_below itself.
@@ -604,37 +680,17 @@ LAMINA_FN float lamina_reflected_from_above(LAMINA_IN_ARRAY(LaminaEntry) entries
                                 multiple);
 }
 
-// Gauss-Legendre nodes and weights on [0, 1], five points (exact for polynomials of degree 9).
-LAMINA_FN float lamina_gauss5_node(int i) {
-  float x = i == 0 ? -0.906179845938664f
-          : i == 1 ? -0.538469310105683f
-          : i == 2 ? 0.0f
-          : i == 3 ? 0.538469310105683f
-                   : 0.906179845938664f;
-  return 0.5f + 0.5f * x;
-}
-LAMINA_FN float lamina_gauss5_weight(int i) {
-  float w = (i == 0 || i == 4) ? 0.236926885056189f : (i == 1 || i == 3) ? 0.478628670499366f : 0.568888888888889f;
-  return 0.5f * w;
-}
-
 // Of the diffuse light a base layer b lets up into the medium of layer i, the share that the
 // guide's tint (lamina_guide) does not absorb, where b's boundary is the guide's lower edge (its
 // index is the chain's least, n_least) and rough; 1 elsewhere. A rough boundary lets light up
-// beyond its critical angle too, into the guide, which the table cannot say directly (it holds a
-// boundary's cosines beyond its critical angle as the edge's). Reciprocity does: light of radiance L
-// under b leaves it into a direction of cosine mu above with radiance L T_a(mu) / eta^2 (T_a = 1 - E
-// - M of the boundary seen from above, eta = n_least / n_i < 1), and its whole flux is 2 pi L int
-// T_b mu dmu (T_b, the boundary seen from below at 1 / eta), so the share
-//   g = 1 - int_cone T_a mu dmu / (eta^2 int T_b mu dmu)
-// goes beyond the cone's edge mu_e. There T_a falls from T_a(mu_e) to 0; taken as a ramp whose
-// integral is g's flux, its width is w = 2 G / (T_a(mu_e) mu_e), G = int T_a mu dmu over the guide,
-// the light enters at the cosine mu_e - w / 3 and leaves back down with a chance 2 T_a(mu_e) / 3
-// each time it returns (the ramp's mean weighted by itself). Per return it crosses the medium twice
-// (t^2) and leaves with e = 1 - (1 - h_i)(1 - d - (1 - d) h_b), d that chance and h_i, h_b the
-// shares of the two boundaries' reflection lobes turned back inside the edge (block C): of what
-// enters, gain = t^2 e / (1 - t^2 (1 - e)) comes back out, as in lamina_guide. Returned: 1 - g (1 -
-// gain), 1 in a clear medium. The tinted stack of a 1.3 coat over a 10-degree 1.7 layer over a
+// beyond its critical angle too, straight into the guide: the share g of lamina_edge_ramp. The
+// light enters where the ramp's transmission puts it, on average w / 3 past the edge's cosine
+// (GGX's exponential: w / 2), and leaves back down with a chance 2 T(mu_e) / 3 each time it returns
+// (the ramp's mean weighted by itself; the exponential's T(mu_e) / 2). Per return it crosses the
+// medium twice (t^2) and leaves with e = 1 - (1 - h_i)(1 - d - (1 - d) h_b), d that chance and h_i,
+// h_b the shares of the two boundaries' reflection lobes turned back inside the edge (block C): of
+// what enters, gain = t^2 e / (1 - t^2 (1 - e)) comes back out, as in lamina_guide. Returned: 1 - g
+// (1 - gain), 1 in a clear medium. The tinted stack of a 1.3 coat over a 10-degree 1.7 layer over a
 // 14-degree 1.45 boundary over Lambert was 6.5% too red against the reference without it (g = 0.08
 // of its base's light enters the guide), 3.6% with it.
 LAMINA_FN vec3 lamina_guide_entry_keep(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
@@ -647,26 +703,16 @@ LAMINA_FN vec3 lamina_guide_entry_keep(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMI
   float eta = params[b].eta;
   float mu_edge = lamina_safe_sqrt(1.0f - eta * eta);
   vec2 xy_up = lamina_albedo_grid_xy(params[b].m, 1.0f / eta);
-  float multiple = 0.0f;
-  float cone = 0.0f;  // int T_a mu dmu over the cone
-  float whole = 0.0f; // int T_b mu dmu over the hemisphere under b
-  for (int q = 0; q < 5; ++q) {
-    float weight = lamina_gauss5_weight(q);
-    float x = lamina_gauss5_node(q);
-    float mu = mix(mu_edge, 1.0f, x);
-    cone += weight * (1.0f - mu_edge) * mu *
-            (1.0f - lamina_boundary_energy(distribution, fresnel, params[b].grid, mu, eta, multiple));
-    whole += weight * x * (1.0f - lamina_boundary_energy(distribution, fresnel, xy_up, x, 1.0f / eta, multiple));
-  }
-  float guided = max(eta * eta * whole - cone, 0.0f);
-  float g = whole > 0.0f ? guided / (eta * eta * whole) : 0.0f;
-  float t_edge = 1.0f - lamina_boundary_energy(distribution, fresnel, params[b].grid, mu_edge, eta, multiple);
-  float width = min(2.0f * guided / max(t_edge * mu_edge, 1.0e-6f), mu_edge);
-  float mu_in = mu_edge - width / 3.0f;
+  vec3 ramp = lamina_edge_ramp(distribution, fresnel, params[b].grid, xy_up, eta);
+  float t_edge = ramp.x;
+  float width = ramp.y;
+  float g = ramp.z;
+  bool exponential = distribution == 2;
+  float mu_in = mu_edge - width * (exponential ? 0.5f : 1.0f / 3.0f);
   vec2 xy_i = lamina_albedo_grid_xy(params[i].m, 1.0f / eta);
   float h_i = 1.0f - lamina_cone_share_beyond(entries[i].distribution, xy_i, lamina_cone_etas(xy_i), mu_in);
   float h_b = 1.0f - lamina_cone_share_beyond(distribution, xy_up, lamina_cone_etas(xy_up), mu_in);
-  float down = 2.0f * t_edge / 3.0f;
+  float down = t_edge * (exponential ? 0.5f : 2.0f / 3.0f);
   float e = 1.0f - (1.0f - h_i) * (1.0f - down - (1.0f - down) * h_b);
   vec3 t = one_way_absorption(params[i].absorption, params[i].thickness, mu_in);
   vec3 t2 = t * t;
@@ -748,7 +794,8 @@ LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     vec3 passage = lamina_layer_passage(entries[i], params[i], mu_out, below, gain, reflected);
     vec3 echo = vec3(1.0f);
     float inside = 0.0f;
-    sum += (weight * mu_out) * passage * lamina_trapped_light(entries, params, i, below, reflected, echo, inside);
+    sum += (weight * mu_out) * passage *
+           lamina_trapped_light(entries, params, i, mu_out, below, reflected, echo, inside);
   }
   vec3 norm = (2.0f * LAMINA_PI) * sum;
   return vec3(norm.x > 0.0f ? 1.0f / norm.x : 0.0f, norm.y > 0.0f ? 1.0f / norm.y : 0.0f,
@@ -960,8 +1007,8 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       vec3 echo_v = vec3(1.0f);
       float inside_l = 1.0f;
       float inside_v = 1.0f;
-      vec3 trapped_l = lamina_trapped_light(entries, params, i, lb.z, reflected_l, echo_l, inside_l);
-      vec3 trapped_v = lamina_trapped_light(entries, params, i, vb.z, reflected_v, echo_v, inside_v);
+      vec3 trapped_l = lamina_trapped_light(entries, params, i, l.z, lb.z, reflected_l, echo_l, inside_l);
+      vec3 trapped_v = lamina_trapped_light(entries, params, i, v.z, vb.z, reflected_v, echo_v, inside_v);
       vec3 boost = min(echo_l, echo_v);
       if (lamina_on_conductor(entries, i) && lb.z > 0.0f && vb.z > 0.0f) {
         float kept = min(lamina_spread_kept(entries, params, i, lb.z, inside_l),

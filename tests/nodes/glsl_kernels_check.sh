@@ -130,7 +130,9 @@ void main() {
   s += lamina_layer_passage(entries[0], params[0], c, 0.5f, multiple, reflected) + reflected;
   vec3 echo = vec3(0.0f);
   float share_in = 0.0f;
-  s += lamina_trapped_light(entries, params, 0, c, 0.5f, echo, share_in) + echo + lamina_trap_gain(entries, params, 0);
+  s += lamina_trapped_light(entries, params, 0, c, c, 0.5f, echo, share_in) + echo + lamina_trap_gain(entries, params, 0);
+  f += lamina_arrival_cosine(c, 0.5f, 1.5f, m) + lamina_edge_ramp(0, 0, vec2(1.0f), vec2(2.0f), 0.7f).y;
+  s += lamina_guide_entry_keep(entries, params, 0, 1, 1.3f);
   f += lamina_exit_reflected(entries, params, 0, c) + lamina_exit_cut(entries, params, 0).y;
   f += lamina_spread_kept(entries, params, 0, c, share_in) + lamina_spread_own(entries, params, 0);
   s += lamina_forward_coefficient(entries, params, 0) + lamina_forward_part(s, s, s, w, v);
