@@ -94,6 +94,10 @@ LAMINA_FN float lamina_erf(float x) {
   return x < 0.0f ? -e : e;
 }
 
+// The standard normal's distribution function Phi(z) and density phi(z).
+LAMINA_FN float lamina_normal_cdf(float z) { return 0.5f * (1.0f + lamina_erf(z * 0.70710678f)); }
+LAMINA_FN float lamina_normal_pdf(float z) { return 0.39894228f * exp(-0.5f * z * z); }
+
 // The inverse error function on (-1, 1): Giles 2010 ("Approximating the erfinv function", GPU
 // Computing Gems), single-precision form, two polynomials in w = -log((1 - x)(1 + x)), the second
 // in sqrt(w) for the tails (relative error near 1e-7; the test checks it against an inversion of

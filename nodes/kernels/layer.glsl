@@ -34,8 +34,8 @@ LAMINA_FN float lamina_arrival_cosine(float mu, float mu_below, float eta, float
   float sine = lamina_safe_sqrt(1.0f - c * c);
   float sigma = max(m * 0.70710678f, 1.0e-6f);
   float z = c / max(sine, 1.0e-6f) / sigma;
-  float below_z = 0.5f * (1.0f + lamina_erf(z * 0.70710678f));
-  float density = 0.39894228f * exp(-0.5f * z * z);
+  float below_z = lamina_normal_cdf(z);
+  float density = lamina_normal_pdf(z);
   float slope = sigma * below_z / max(density + z * below_z, 1.0e-12f);
   // cos and sin of delta = atan(slope), then of the refracted angle through the facet, then of their sum.
   float cos_d = 1.0f / sqrt(1.0f + slope * slope);

@@ -438,9 +438,8 @@ LAMINA_FN float lamina_exit_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMIN
                                       LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float theta) {
   vec2 edge = params[i].exit_cut;
   float z = (edge.x - theta) / edge.y;
-  // Phi(z) and phi(z) = exp(-z^2 / 2) / sqrt(2 pi) of the standard normal.
-  float cut = max(0.5f * (1.0f + lamina_erf(z * 0.70710678f)), 1.0e-6f);
-  float mean = max(theta - edge.y * 0.39894228f * exp(-0.5f * z * z) / cut, 0.0f);
+  float cut = max(lamina_normal_cdf(z), 1.0e-6f);
+  float mean = max(theta - edge.y * lamina_normal_pdf(z) / cut, 0.0f);
   float eta = params[i].eta;
   float sin_mean = sin(mean);
   float mu_out = lamina_safe_sqrt(1.0f - eta * eta * sin_mean * sin_mean);

@@ -174,21 +174,31 @@ TEST_CASE("a lossless stack with a boundary down to a lower index reflects nearl
 
 namespace {
 
-// A rough 10-degree coat of 1.7 over a smooth 1.45 layer over a Lambert base, the coat's medium
-// tinted (`tint` replaces TINT) or clear (drop it): in the coat's medium, beyond 58.5 degrees
-// (the 1.45 boundary's critical angle) light can reach no base and is totally reflected by both
-// boundaries.
-std::string guided_stack(const std::string& tint) {
-  const std::string text = R"({"format": 1, "materials": [{"name": "guided", "model": "energy_conserving",
+// A rough 10-degree GGX coat of 1.7 over a boundary down to 1.45 (`film`: its roughness and
+// distribution) over a Lambert base, the coat's medium absorbing `absorption` per unit (clear for
+// ""): in the coat's medium, beyond 58.5 degrees (the 1.45 boundary's critical angle) light can
+// reach no base and is totally reflected by both boundaries, a guide.
+std::string guided_stack(const std::string& film, const std::string& absorption) {
+  const std::string tint = absorption.empty() ? "" : R"("medium": "@tint",)";
+  const std::string medium =
+      absorption.empty()
+          ? ""
+          : R"({"id": "tint", "type": "medium/absorbing", "thickness": 0.5, "absorption": )" + absorption + "},";
+  return R"({"format": 1, "materials": [{"name": "guided", "model": "energy_conserving",
     "surface": "@top", "nodes": [
-    {"id": "top", "type": "layer", "interface": "@glass", TINT "base": "@lower"},
+    {"id": "top", "type": "layer", "interface": "@glass", )" +
+         tint + R"( "base": "@lower"},
     {"id": "glass", "type": "interface/dielectric", "ior": 1.7, "roughness_deg": 10.0, "distribution": "ggx"},
     {"id": "lower", "type": "layer", "interface": "@film", "base": "@paper"},
-    {"id": "film", "type": "interface/dielectric", "ior": 1.45, "roughness_deg": 0.5},
-    {"id": "tint", "type": "medium/absorbing", "thickness": 0.5, "absorption": [0.6, 0.2, 0.05]},
+    {"id": "film", "type": "interface/dielectric", "ior": 1.45, )" +
+         film + "}," + medium + R"(
     {"id": "paper", "type": "substrate/lambert", "albedo": [0.9, 0.85, 0.7]}]}]})";
-  return glsl::replace_all(text, "TINT", tint);
 }
+
+// The lower boundary of guided_stack: nearly smooth, or rough enough to refract the base's light
+// beyond its critical angle.
+const char* const kSmoothFilm = R"("roughness_deg": 0.5)";
+const char* const kRoughFilm = R"("roughness_deg": 14.0, "distribution": "beckmann")";
 
 }  // namespace
 
@@ -196,13 +206,13 @@ TEST_CASE("light a rough coat spreads into the guide under it is lost to the gui
   // What the coat reflects back down beyond the lower boundary's critical angle travels on between
   // the two boundaries until the coat's roughness turns it back (lamina_guide). In a clear medium
   // all of it comes back: the guide changes nothing.
-  cpu::Evaluator clear = test::evaluator_from_text(guided_stack(""));
+  cpu::Evaluator clear = test::evaluator_from_text(guided_stack(kSmoothFilm, ""));
   const cpu::ShadingPoint::Stack stack = clear.bind(ShadingContext{}).stack();
   const kernels::LaminaGuide clear_guide = kernels::lamina_guide(stack.entries, stack.params, 0, 1.45f);
   REQUIRE(clear_guide.guided);
   for (int c = 0; c < 3; ++c) CHECK(clear_guide.gain[c] == doctest::Approx(1.0f).epsilon(1e-6));
   // The spread's share beyond the edge grows toward it: the keep of a tinted guide falls.
-  cpu::Evaluator tinted = test::evaluator_from_text(guided_stack(R"("medium": "@tint",)"));
+  cpu::Evaluator tinted = test::evaluator_from_text(guided_stack(kSmoothFilm, "[0.6, 0.2, 0.05]"));
   const cpu::ShadingPoint point = tinted.bind(ShadingContext{});
   const kernels::LaminaGuide guide = kernels::lamina_guide(point.stack().entries, point.stack().params, 0, 1.45f);
   CHECK(guide.gain.x < guide.gain.y);
@@ -221,34 +231,9 @@ TEST_CASE("light a rough coat spreads into the guide under it is lost to the gui
   check_albedo_against_reference(point, {0.0, 40.0}, 0.075, 0.0, test::kSanitized ? 1 << 13 : 1 << 16);
 }
 
-namespace {
-
-// A rough 10-degree GGX coat of 1.7 (its medium absorbing `absorption` per unit, clear for "")
-// over a rough 14-degree Beckmann boundary down to 1.45 over a Lambert base: the lower boundary
-// lets part of the base's light up beyond its critical angle, into the guide.
-std::string rough_edge_stack(const std::string& absorption) {
-  const std::string tint = absorption.empty() ? "" : R"("medium": "@tint",)";
-  const std::string medium = absorption.empty() ? ""
-                                                : R"(
-    {"id": "tint", "type": "medium/absorbing", "thickness": 0.5, "absorption": )" +
-                                                      absorption + "},";
-  return R"({"format": 1, "materials": [{"name": "edge", "model": "energy_conserving",
-    "surface": "@top", "nodes": [
-    {"id": "top", "type": "layer", "interface": "@glass", )" +
-         tint + R"( "base": "@lower"},
-    {"id": "glass", "type": "interface/dielectric", "ior": 1.7, "roughness_deg": 10.0, "distribution": "ggx"},
-    {"id": "lower", "type": "layer", "interface": "@film", "base": "@paper"},
-    {"id": "film", "type": "interface/dielectric", "ior": 1.45, "roughness_deg": 14.0, "distribution": "beckmann"},
-)" + medium +
-         R"(
-    {"id": "paper", "type": "substrate/lambert", "albedo": [0.9, 0.85, 0.7]}]}]})";
-}
-
-}  // namespace
-
 TEST_CASE("diffuse light a rough boundary lets up into the guide is lost to its tint, as much as the walks put there") {
   // Clear: all of it comes back out, and the base's light is kept whole.
-  cpu::Evaluator clear = test::evaluator_from_text(rough_edge_stack(""));
+  cpu::Evaluator clear = test::evaluator_from_text(guided_stack(kRoughFilm, ""));
   const cpu::ShadingPoint::Stack open = clear.bind(ShadingContext{}).stack();
   REQUIRE(open.count == 3);
   const vec3 clear_keep = kernels::lamina_guide_entry_keep(open.entries, open.params, 0, 1, 1.45f);
@@ -257,7 +242,7 @@ TEST_CASE("diffuse light a rough boundary lets up into the guide is lost to its 
   // the share of the base's light that the boundary lets up beyond its critical angle. The
   // boundary's own random walks (the reference's interfaces) measure g independently: Lambertian
   // light from below, the share of what crosses that leaves beyond the edge.
-  cpu::Evaluator tinted = test::evaluator_from_text(rough_edge_stack("[60.0, 0.6, 0.05]"));
+  cpu::Evaluator tinted = test::evaluator_from_text(guided_stack(kRoughFilm, "[60.0, 0.6, 0.05]"));
   const cpu::ShadingPoint point = tinted.bind(ShadingContext{});
   const cpu::ShadingPoint::Stack stack = point.stack();
   const vec3 keep = kernels::lamina_guide_entry_keep(stack.entries, stack.params, 0, 1, 1.45f);
@@ -290,7 +275,7 @@ TEST_CASE("diffuse light a rough boundary lets up into the guide is lost to its 
   CHECK(1.0 - double(keep.x) == doctest::Approx(g).epsilon(0.15));
   // Against the reference, under three_interfaces' tint (which, with a 1.3 coat over this guide,
   // was 6.5% too red without the loss).
-  cpu::Evaluator paint = test::evaluator_from_text(rough_edge_stack("[0.6, 0.2, 0.05]"));
+  cpu::Evaluator paint = test::evaluator_from_text(guided_stack(kRoughFilm, "[0.6, 0.2, 0.05]"));
   check_albedo_against_reference(paint.bind(ShadingContext{}), {0.0, 40.0}, 0.04, 0.0,
                                  test::kSanitized ? 1 << 13 : 1 << 16);
 }
