@@ -455,6 +455,55 @@ TEST_CASE("what a rough boundary lets through beyond its critical angle falls of
   }
 }
 
+TEST_CASE("a boundary's table read from below gives what it lets out of a metal's lobe") {
+  // A metal under a coat reflects light from normal incidence into its lobe; of the part inside the
+  // exit cone the coat lets out, in its own walks from below, what the table's T = 1 - E - M read
+  // from below says. (Read from above at the Snell direction, as the carry's T(v) is, it says more
+  // for such a wide lobe: 0.95 against the walks' 0.87 under the GGX coat, 0.91 against 0.72 under
+  // the coat of 1.7; README, ggx_lacquer_metal.)
+  struct Case {
+    int distribution;
+    double coat_degrees;
+    float ior;
+    double metal_degrees;
+  };
+  cpu::Pcg32 pcg(41, 42);
+  const int draws = test::kSanitized ? 1 << 14 : 1 << 17;
+  for (const Case c : {Case{2, 8.0, 1.45f, 15.0}, Case{0, 18.0, 1.7f, 18.0}}) {
+    cpu::MicrosurfaceBoundary b;  // light from below, the dense side
+    b.eta = c.ior;
+    b.distribution = c.distribution;
+    b.fresnel = 0;
+    b.m = float(std::tan(test::radians(c.coat_degrees)));
+    const float m_metal = float(std::tan(test::radians(c.metal_degrees)));
+    const glm::vec2 below = kernels::lamina_albedo_grid_xy(b.m, 1.0f / c.ior);
+    const float mu_edge = kernels::lamina_cos_critical(c.ior);
+    const vec3 l(0.0f, 0.0f, 1.0f);
+    double lobe = 0.0;
+    double walks = 0.0;
+    double table = 0.0;
+    for (int d = 0; d < draws; ++d) {
+      // The metal's lobe D G / (4 cos_l cos_v) cos_v drawn by its normals: weight G (l.h) / (cos_l cos_h).
+      const float u1 = pcg.uniform();  // one draw per statement: the same sequence under every compiler
+      const float u2 = pcg.uniform();
+      const vec3 h = kernels::sample_microfacet_normal(c.distribution, m_metal, glm::vec2(u1, u2));
+      const float lh = glm::dot(l, h);
+      const vec3 w = 2.0f * lh * h - l;
+      if (w.z <= mu_edge || lh <= 0.0f) continue;
+      const double weight = kernels::g_microfacet(c.distribution, l.z, w.z, h.z, lh, m_metal) * lh / (l.z * h.z);
+      const cpu::MicrosurfaceSample s = cpu::microsurface_sample(b, vec3(w.x, w.y, -w.z), pcg);
+      float multiple = 0.0f;
+      lobe += weight;
+      walks += s.direction.z > 0.0f ? weight * s.weight : 0.0;
+      table += weight * (1.0f - kernels::lamina_boundary_energy(c.distribution, 0, below, w.z, 1.0f / c.ior, multiple));
+    }
+    CAPTURE(c.ior);
+    CAPTURE(walks / lobe);
+    CAPTURE(table / lobe);
+    CHECK(table / lobe == doctest::Approx(walks / lobe).epsilon(0.025));
+  }
+}
+
 TEST_CASE("a rough coat over a metal lets the light it traps out at its first return, as the reference does") {
   // blue_metallic (a 17-degree coat of 1.35 over aluminium, tinted) and schlick_gold (a 10-degree
   // coat of 1.5 over 8-degree gold): with the metal's light split where the coat really sends it
