@@ -468,7 +468,7 @@ TEST_CASE("a boundary's table read from below gives what it lets out of a metal'
     double metal_degrees;
   };
   cpu::Pcg32 pcg(41, 42);
-  const int draws = test::kSanitized ? 1 << 14 : 1 << 17;
+  const int draws = test::kSanitized ? 1 << 16 : 1 << 17;
   for (const Case c : {Case{2, 8.0, 1.45f, 15.0}, Case{0, 18.0, 1.7f, 18.0}}) {
     cpu::MicrosurfaceBoundary b;  // light from below, the dense side
     b.eta = c.ior;
@@ -500,7 +500,7 @@ TEST_CASE("a boundary's table read from below gives what it lets out of a metal'
     CAPTURE(c.ior);
     CAPTURE(walks / lobe);
     CAPTURE(table / lobe);
-    CHECK(table / lobe == doctest::Approx(walks / lobe).epsilon(0.025));
+    CHECK(table / lobe == doctest::Approx(walks / lobe).epsilon(0.03));
   }
 }
 
