@@ -480,7 +480,8 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
   float eta = params[i].eta;
   if (eta <= 1.0f) return vec3(0.0f);
   float mu_edge = sqrt(1.0f - 1.0f / (eta * eta));
-  float theta_o = lamina_beyond_edge_angle(params[i].exit_cut.x, mu_edge, lamina_trap_slope(entries, params, i));
+  float trap_slope = lamina_trap_slope(entries, params, i);
+  float theta_o = lamina_beyond_edge_angle(params[i].exit_cut.x, mu_edge, trap_slope);
   float mu_o = cos(theta_o);
   vec3 a_all = vec3(0.0f);
   float inside = 0.0f;
@@ -502,7 +503,7 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
                                  lamina_albedo_grid_xy(params[i].m, 1.0f / eta), params[i].grid, 1.0f / eta);
     float theta_e = params[i].exit_cut.x;
     float w = max(ramp.y / max(sin(theta_e), 1.0e-3f), 1.0e-6f);
-    float sigma = max(1.41614f * atan(lamina_trap_slope(entries, params, i)), 1.0e-4f);
+    float sigma = max(1.41614f * atan(trap_slope), 1.0e-4f);
     float below = lamina_erf(w / (sigma * 1.41421356f));
     float mean_below = sigma * 0.79788456f * (1.0f - exp(-0.5f * w * w / (sigma * sigma)));
     float ramp_mean = below - mean_below / w;

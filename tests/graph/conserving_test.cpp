@@ -248,11 +248,8 @@ TEST_CASE("diffuse light a rough boundary lets up into the guide is lost to its 
   const vec3 keep = kernels::lamina_guide_entry_keep(stack.entries, stack.params, 0, 1, 1.45f);
   CHECK(keep.x < keep.y);
   CHECK(keep.y < keep.z);
-  cpu::MicrosurfaceBoundary b;
-  b.eta = stack.params[1].eta;
-  b.distribution = stack.entries[1].distribution;
-  b.fresnel = stack.entries[1].fresnel;
-  b.m = stack.params[1].m;
+  const cpu::MicrosurfaceBoundary b{stack.params[1].eta, stack.entries[1].distribution, stack.entries[1].fresnel,
+                                    stack.params[1].m};
   const double mu_edge = std::sqrt(1.0 - double(b.eta) * double(b.eta));
   cpu::Pcg32 pcg(11, 12);
   double up = 0.0;
@@ -383,11 +380,7 @@ TEST_CASE("light a rough metal traps under a rough coat comes back out as the re
 TEST_CASE("light under a rough coat goes on deeper than Snell's law, where the coat's own walks send it") {
   // The facets a grazing ray sees tilt towards it (lamina_arrival_cosine). The walks of a 10-degree
   // Beckmann coat of 1.5: the mean angle of the light they let through, against the kernel's.
-  cpu::MicrosurfaceBoundary b;
-  b.eta = 1.5f;
-  b.distribution = 0;
-  b.fresnel = 0;
-  b.m = float(std::tan(test::radians(10.0)));
+  const cpu::MicrosurfaceBoundary b{1.5f, 0, 0, float(std::tan(test::radians(10.0)))};
   cpu::Pcg32 pcg(21, 22);
   const int draws = test::kSanitized ? 1 << 14 : 1 << 17;
   for (double theta : {30.0, 60.0, 80.0, 89.0}) {
@@ -426,11 +419,8 @@ TEST_CASE("what a rough boundary lets through beyond its critical angle falls of
   cpu::Pcg32 pcg(31, 32);
   const int draws = test::kSanitized ? 1 << 14 : 1 << 16;
   for (const Case c : {Case{0, 17.0, 1.35f}, Case{2, 8.0, 1.45f}}) {
-    cpu::MicrosurfaceBoundary b;  // light from below, the dense side
-    b.eta = c.ior;
-    b.distribution = c.distribution;
-    b.fresnel = 0;
-    b.m = float(std::tan(test::radians(c.degrees)));
+    // Light from below, the dense side.
+    const cpu::MicrosurfaceBoundary b{c.ior, c.distribution, 0, float(std::tan(test::radians(c.degrees)))};
     const float eta = 1.0f / c.ior;  // seen from the dense side
     const vec3 ramp = kernels::lamina_edge_ramp(c.distribution, 0, kernels::lamina_albedo_grid_xy(b.m, eta),
                                                 kernels::lamina_albedo_grid_xy(b.m, c.ior), eta);
@@ -470,11 +460,8 @@ TEST_CASE("a boundary's table read from below gives what it lets out of a metal'
   cpu::Pcg32 pcg(41, 42);
   const int draws = test::kSanitized ? 1 << 16 : 1 << 17;
   for (const Case c : {Case{2, 8.0, 1.45f, 15.0}, Case{0, 18.0, 1.7f, 18.0}}) {
-    cpu::MicrosurfaceBoundary b;  // light from below, the dense side
-    b.eta = c.ior;
-    b.distribution = c.distribution;
-    b.fresnel = 0;
-    b.m = float(std::tan(test::radians(c.coat_degrees)));
+    // Light from below, the dense side.
+    const cpu::MicrosurfaceBoundary b{c.ior, c.distribution, 0, float(std::tan(test::radians(c.coat_degrees)))};
     const float m_metal = float(std::tan(test::radians(c.metal_degrees)));
     const glm::vec2 below = kernels::lamina_albedo_grid_xy(b.m, 1.0f / c.ior);
     const float mu_edge = kernels::lamina_cos_critical(c.ior);
