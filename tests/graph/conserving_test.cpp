@@ -378,30 +378,34 @@ TEST_CASE("light a rough metal traps under a rough coat comes back out as the re
 }
 
 TEST_CASE("light under a rough coat goes on deeper than Snell's law, where the coat's own walks send it") {
-  // The facets a grazing ray sees tilt towards it (lamina_arrival_cosine). The walks of a 10-degree
-  // Beckmann coat of 1.5: the mean angle of the light they let through, against the kernel's.
-  const cpu::MicrosurfaceBoundary b{1.5f, 0, 0, float(std::tan(test::radians(10.0)))};
-  cpu::Pcg32 pcg(21, 22);
-  const int draws = test::kSanitized ? 1 << 14 : 1 << 17;
-  for (double theta : {30.0, 60.0, 80.0, 89.0}) {
-    const vec3 x = test::to_float(test::spherical(test::radians(theta), 0.0));
-    double weight = 0.0;
-    double angle = 0.0;
-    for (int d = 0; d < draws; ++d) {
-      const cpu::MicrosurfaceSample s = cpu::microsurface_sample(b, x, pcg);
-      if (s.direction.z >= 0.0f) continue;
-      weight += s.weight;
-      angle += s.weight * std::acos(double(-s.direction.z));
+  // The facets a grazing ray sees tilt towards it, and those facing it let more through
+  // (lamina_arrival_cosine). The walks of a 10- and an 18-degree Beckmann coat of 1.5: the mean
+  // angle of the light they let through, against the kernel's.
+  for (double roughness : {10.0, 18.0}) {
+    const cpu::MicrosurfaceBoundary b{1.5f, 0, 0, float(std::tan(test::radians(roughness)))};
+    cpu::Pcg32 pcg(21, 22);
+    const int draws = test::kSanitized ? 1 << 14 : 1 << 17;
+    for (double theta : {30.0, 60.0, 80.0, 85.0, 89.0}) {
+      const vec3 x = test::to_float(test::spherical(test::radians(theta), 0.0));
+      double weight = 0.0;
+      double angle = 0.0;
+      for (int d = 0; d < draws; ++d) {
+        const cpu::MicrosurfaceSample s = cpu::microsurface_sample(b, x, pcg);
+        if (s.direction.z >= 0.0f) continue;
+        weight += s.weight;
+        angle += s.weight * std::acos(double(-s.direction.z));
+      }
+      const double walks = angle / weight * 180.0 / test::kPi;
+      const float mu = float(std::cos(test::radians(theta)));
+      const float snell = kernels::lamina_cosine_below(mu, b.eta);
+      const double model = std::acos(double(kernels::lamina_arrival_cosine(mu, snell, b.eta, b.m))) * 180.0 / test::kPi;
+      CAPTURE(roughness);
+      CAPTURE(theta);
+      CAPTURE(walks);
+      CAPTURE(model);
+      CHECK(std::abs(model - walks) < 0.6);
+      CHECK(model >= std::acos(double(snell)) * 180.0 / test::kPi - 0.01);
     }
-    const double walks = angle / weight * 180.0 / test::kPi;
-    const float mu = float(std::cos(test::radians(theta)));
-    const float snell = kernels::lamina_cosine_below(mu, b.eta);
-    const double model = std::acos(double(kernels::lamina_arrival_cosine(mu, snell, b.eta, b.m))) * 180.0 / test::kPi;
-    CAPTURE(theta);
-    CAPTURE(walks);
-    CAPTURE(model);
-    CHECK(std::abs(model - walks) < 1.6);
-    CHECK(model >= std::acos(double(snell)) * 180.0 / test::kPi - 0.01);
   }
   // A smooth coat refracts by Snell's law.
   const float snell = kernels::lamina_cosine_below(0.3f, 1.5f);
@@ -488,6 +492,21 @@ TEST_CASE("a boundary's table read from below gives what it lets out of a metal'
     CAPTURE(walks / lobe);
     CAPTURE(table / lobe);
     CHECK(table / lobe == doctest::Approx(walks / lobe).epsilon(0.03));
+  }
+}
+
+TEST_CASE("a rough coat over a metal lets out what the reference does, where the metal's light really goes") {
+  // ggx_lacquer_metal (an 8-degree GGX coat over a wider 15-degree GGX metal) was 4.5% to 6.4% too
+  // bright at every angle while the carry let the metal's light out as the coat passes light from
+  // above (lamina_exit_reflected's keep); unclamped_metal (an 18-degree coat over a 3-degree metal)
+  // was 8.7% too bright at 85 degrees while the metal's share inside the cone was read at the mean
+  // arrival (lamina_arrival_reflected, lamina_trap_gain's deeper stream). Both within 5% here.
+  const char* files[] = {"tests/data/physics/ggx_lacquer_metal.json", "tests/data/physics/unclamped_metal.json"};
+  for (const char* file : files) {
+    CAPTURE(file);
+    cpu::Evaluator e = test::load_evaluator(test::source_dir() / file);
+    check_albedo_against_reference(e.bind(ShadingContext{}), {0.0, 50.0, 75.0, 85.0}, 0.05, 4.0,
+                                   test::kSanitized ? 1 << 12 : 1 << 16);
   }
 }
 
