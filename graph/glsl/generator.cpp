@@ -246,7 +246,7 @@ class MaterialEmitter final : public OpWriter {
           << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
           << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
           << at << "exit_cut = " << vec2_literal(q.exit_cut) << ";\n"
-          << at << "trap_ramp = " << vec2_literal(q.trap_ramp) << ";\n"
+          << at << "trap_ramp = " << vec3_literal(q.trap_ramp) << ";\n"
           << at << "trap_angles = " << vec2_literal(q.trap_angles) << ";\n"
           << at << "trap_near = " << vec3_literal(q.trap_near) << ";\n"
           << at << "trap_far = " << vec3_literal(q.trap_far) << ";\n"

@@ -239,7 +239,7 @@ struct LaminaParams {
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
   vec3 cone_etas;   // with the indices it reads there (lamina_cone_etas)
   vec2 exit_cut;    // and where its lobe leaves the exit cone (lamina_exit_cut)
-  vec2 trap_ramp;   // and what its boundary lets out beyond the edge (lamina_trap_ramp)
+  vec3 trap_ramp;   // and what its boundary lets out beyond the edge (lamina_trap_ramp)
   vec2 trap_angles; // and the trapped stream's angles, resting and deepest (lamina_trap_angles)
   vec3 trap_near;   // and Gamma_0 there (lamina_trap_series)
   vec3 trap_far;
@@ -545,12 +545,11 @@ LAMINA_FN vec3 lamina_trap_series(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_ST
   vec3 t_c = one_way_absorption(params[i].absorption, params[i].thickness, 0.5f * (1.0f + mu_edge));
   float back = lamina_exit_reflected(entries, params, i, theta_o).x;
   // A rough boundary lets part of the trapped light out where it lies beyond the edge
-  // (lamina_edge_ramp, LaminaParams.trap_ramp: T at the edge and the ramp's width in angle): d_r,
-  // the ramp's T averaged over where the metal's lobe puts it, a normal of deviation sigma = 1.416
-  // atan(m) about theta_o kept beyond the edge (lamina_ramp_mean). What it does not let out goes on.
-  vec2 ramp = params[i].trap_ramp;
-  float sigma = max(1.41614f * atan(lamina_trap_slope(entries, params, i)), 1.0e-4f);
-  float d_return = ramp.x * lamina_ramp_mean(entries[i].distribution, ramp.y, theta_o - params[i].exit_cut.x, sigma);
+  // (lamina_edge_ramp, LaminaParams.trap_ramp: T at the edge, the ramp's width in angle and sigma):
+  // d_r, the ramp's T averaged over where the metal's lobe puts it, a normal of deviation sigma about
+  // theta_o kept beyond the edge (lamina_ramp_mean). What it does not let out goes on.
+  vec3 ramp = params[i].trap_ramp;
+  float d_return = ramp.x * lamina_ramp_mean(entries[i].distribution, ramp.y, theta_o - params[i].exit_cut.x, ramp.z);
   vec3 p = a_in * t_c * (1.0f - back) + a_out * t_o * d_return;
   vec3 q = a_out * t_o * t_o * (1.0f - d_return) + a_in * t_c * t_c * back;
   return t_o * t_o * p / max(vec3(1.0f) - q, vec3(1.0e-6f));
@@ -582,23 +581,25 @@ LAMINA_FN vec3 lamina_trap_gain(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STAC
   float s = clamp((theta_o - range.x) / max(range.y - range.x, 1.0e-6f), 0.0f, 1.0f);
   vec3 series = mix(params[i].trap_near, params[i].trap_far, s);
   vec3 t_o = one_way_absorption(params[i].absorption, params[i].thickness, cos(theta_o));
-  vec2 ramp = params[i].trap_ramp;
-  float sigma = max(1.41614f * atan(lamina_trap_slope(entries, params, i)), 1.0e-4f);
+  vec3 ramp = params[i].trap_ramp;
   float beyond = max(theta_arrive - params[i].exit_cut.x, 0.0f);
-  float d = ramp.x * lamina_ramp_mean(entries[i].distribution, ramp.y, beyond, sigma);
+  float d = ramp.x * lamina_ramp_mean(entries[i].distribution, ramp.y, beyond, ramp.z);
   return t_o * d + (1.0f - d) * series;
 }
 
 // What the boundary of layer i over a conductor lets out of trapped light just beyond its edge,
-// once per shading point (LaminaParams.trap_ramp): lamina_edge_ramp's T at the edge and its width
-// turned into an angle; T 0 for a smooth boundary (or eta <= 1), which lets nothing out there.
-LAMINA_FN vec2 lamina_trap_ramp(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+// once per shading point (LaminaParams.trap_ramp): lamina_edge_ramp's T at the edge, its width
+// turned into an angle, and the deviation sigma = 1.416 atan(m) in angle of where the metal's lobe
+// puts the trapped light (m the trap's slope, lamina_trap_slope); T 0 for a smooth boundary (or
+// eta <= 1), which lets nothing out there.
+LAMINA_FN vec3 lamina_trap_ramp(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   float eta = params[i].eta;
-  if (eta <= 1.0f || params[i].m <= 0.0f) return vec2(0.0f, 1.0f);
+  float sigma = max(1.41614f * atan(lamina_trap_slope(entries, params, i)), 1.0e-4f);
+  if (eta <= 1.0f || params[i].m <= 0.0f) return vec3(0.0f, 1.0f, sigma);
   vec2 below = lamina_albedo_grid_xy(params[i].m, 1.0f / eta);
   vec3 ramp = lamina_edge_ramp(entries[i].distribution, entries[i].fresnel, below, params[i].grid, 1.0f / eta);
-  return vec2(ramp.x, max(ramp.y / max(sin(params[i].exit_cut.x), 1.0e-3f), 1.0e-6f));
+  return vec3(ramp.x, max(ramp.y / max(sin(params[i].exit_cut.x), 1.0e-3f), 1.0e-6f), sigma);
 }
 
 // The slope on block C's grid, once per shading point (LaminaParams.arrival_y), of the metal's own
@@ -961,7 +962,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.cone_grid = vec2(0.0f);
     p.cone_etas = vec3(0.0f);
     p.exit_cut = vec2(0.0f);
-    p.trap_ramp = vec2(0.0f, 1.0f);
+    p.trap_ramp = vec3(0.0f, 1.0f, 1.0f);
     p.trap_angles = vec2(0.0f, 1.0f);
     p.trap_near = vec3(0.0f);
     p.trap_far = vec3(0.0f);

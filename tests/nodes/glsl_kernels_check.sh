@@ -132,7 +132,7 @@ void main() {
   float share_in = 0.0f;
   float keep = 0.0f;
   s += lamina_trapped_light(entries, params, 0, c, c, 0.5f, echo, share_in, keep) + echo + keep;
-  s += lamina_trap_gain(entries, params, 0, 0.5f) + vec3(lamina_trap_ramp(entries, params, 0), 0.0f);
+  s += lamina_trap_gain(entries, params, 0, 0.5f) + lamina_trap_ramp(entries, params, 0);
   s += lamina_trap_series(entries, params, 0, 0.9f) + vec3(lamina_trap_angles(entries, params, 0), 0.0f);
   vec3 a_all = vec3(0.0f);
   s += lamina_arrival_reflected(entries, params, 0, c, a_all, share_in) + a_all;
