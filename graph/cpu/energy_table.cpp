@@ -73,6 +73,19 @@ double height_correlated_albedo_quadrature(int distribution, int fresnel, float 
   });
 }
 
+double raised_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
+  const vec3 v = view_of_cosine(mu);
+  const vec2 xy = k::lamina_albedo_grid_xy(m, eta);
+  const float boost_v = k::lamina_boundary_boost_at(k::lamina_albedo_point_at(distribution, fresnel, xy, mu, eta));
+  return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
+    double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
+    if (!(pdf > 0.0)) return 0.0;
+    const float boost_l = k::lamina_boundary_boost_at(k::lamina_albedo_point_at(distribution, fresnel, xy, l.z, eta));
+    return double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf *
+           (1.0 + double(boost_v) * double(boost_l));
+  });
+}
+
 MicrosurfaceStatistics microsurface_statistics(int distribution, int fresnel, float mu, float m, float eta, int walks,
                                                uint64_t seed) {
   const MicrosurfaceBoundary boundary{eta, distribution, fresnel, m};
@@ -203,6 +216,55 @@ int cell_lift(int i, int j, const int corners[8], double centre) {
 
 }  // namespace
 
+std::vector<int> boundary_boost_run(int combo, int i, int j, const int* multiple) {
+  constexpr int n = k::LAMINA_ALBEDO_COSINES;
+  std::vector<int> run(size_t(n), 0);
+  // A smooth boundary's lobe is a mirror the kernels do not evaluate, and it scatters once only.
+  if (j == 0) return run;
+  const int distribution = combo / 2;
+  const int fresnel = combo % 2;
+  const float eta = k::lamina_albedo_node_eta(i);
+  const float m = k::lamina_albedo_node_slope(j);
+  const double strata = double(kAlbedoTableStrata) * double(kAlbedoTableStrata);
+  // K[c][q]: what the lobe at node c's view reflects, weighted by the hat function of cosine node q
+  // on the grid's axis (the composition interpolates b linearly there), so that (K b)_c is exactly
+  // the integral of f(l_c, v) b(v) cos_v for the interpolated b.
+  std::vector<double> kernel(size_t(n * n), 0.0), target(size_t(n), 0.0), own(size_t(n), 0.0);
+  for (int c = 0; c < n; ++c) {
+    const vec3 l = view_of_cosine(k::lamina_albedo_node_cosine(c, eta));
+    own[size_t(c)] =
+        over_mirrored_directions(distribution, m, l, kAlbedoTableStrata, [&](vec3 v, vec3 h, float l_dot_h) {
+          const double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(l_dot_h));
+          if (!(pdf > 0.0)) return 0.0;
+          const double w =
+              double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(v.z) / pdf;
+          const float z = std::sqrt(k::lamina_albedo_axis_cosine(v.z, eta)) * float(n - 1);
+          const int q = std::min(int(z), n - 2);
+          const double fz = double(z - float(q));
+          kernel[size_t(c * n + q)] += w * (1.0 - fz) / strata;
+          kernel[size_t(c * n + q + 1)] += w * fz / strata;
+          return w;
+        });
+    target[size_t(c)] = double(multiple[c]) / 65535.0;
+  }
+  // b_c (K b)_c = target_c, by the symmetric scaling iteration b <- sqrt(b target / (K b)), from
+  // b = sqrt(target / E), its solution where the lobe is narrow.
+  std::vector<double> b(size_t(n), 0.0), next(size_t(n), 0.0);
+  for (int c = 0; c < n; ++c) b[size_t(c)] = own[size_t(c)] > 0.0 ? std::sqrt(target[size_t(c)] / own[size_t(c)]) : 0.0;
+  for (int iteration = 0; iteration < kBoostIterations; ++iteration) {
+    for (int c = 0; c < n; ++c) {
+      double kb = 0.0;
+      for (int q = 0; q < n; ++q) kb += kernel[size_t(c * n + q)] * b[size_t(q)];
+      next[size_t(c)] = kb > 0.0 ? std::sqrt(b[size_t(c)] * target[size_t(c)] / kb) : 0.0;
+    }
+    b.swap(next);
+  }
+  for (int c = 0; c < n; ++c)
+    run[size_t(c)] =
+        int(std::clamp(std::floor(b[size_t(c)] / double(k::LAMINA_ALBEDO_BOOST_RANGE) * 65535.0), 0.0, 65535.0));
+  return run;
+}
+
 std::vector<int> dielectric_albedo_table() {
   const int rows = k::LAMINA_ALBEDO_COMBOS * k::LAMINA_ALBEDO_ETAS;
   const int width = k::LAMINA_ALBEDO_TABLE_WIDTH;
@@ -260,6 +322,15 @@ std::vector<int> dielectric_albedo_table() {
       int& multiple = table[at + size_t(k::LAMINA_ALBEDO_MULTIPLE_COLUMN)];
       multiple = std::min(multiple, 65535 - table[at]);
     }
+  // Block B from the final E and M.
+  parallel_for(size_t(rows * k::LAMINA_ALBEDO_SLOPES), [&](size_t task) {
+    const int row = int(task) / k::LAMINA_ALBEDO_SLOPES;
+    const int j = int(task) % k::LAMINA_ALBEDO_SLOPES;
+    int* at = table.data() + size_t(row) * size_t(width) + size_t(j * k::LAMINA_ALBEDO_COSINES);
+    const std::vector<int> run = boundary_boost_run(row / k::LAMINA_ALBEDO_ETAS, row % k::LAMINA_ALBEDO_ETAS, j,
+                                                    at + k::LAMINA_ALBEDO_MULTIPLE_COLUMN);
+    std::copy(run.begin(), run.end(), at + k::LAMINA_ALBEDO_BOOST_COLUMN);
+  });
   return table;
 }
 
@@ -283,7 +354,7 @@ std::string dielectric_albedo_inc(const std::vector<int>& table) {
   std::string text =
       "// Generated from the kernels by graph/cpu/energy_table.cpp (LAMINA_UPDATE_TABLES=1 lamina_tests\n"
       "// -tc='the dielectric albedo table*'): energy.glsl's table, a row per cosine run, the runs of E,\n"
-      "// then those of M, C, P and Q for each (combination, eta).\n";
+      "// then those of M, C, P, Q and B for each (combination, eta).\n";
   for (size_t at = 0; at < table.size(); ++at) {
     text += std::to_string(table[at]);
     const bool run_end = (at + 1) % size_t(k::LAMINA_ALBEDO_COSINES) == 0;

@@ -12,6 +12,10 @@ namespace lamina::cpu {
 // cosine mu, on n x n strata of the distribution's normal sampling (sample_microfacet_normal).
 double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n);
 
+// The same integral for the lobe the energy-conserving composition reflects, raised by the table's
+// boost: f(l, v) (1 + b(l) b(v)), b read from block B as the kernels read it (energy.glsl).
+double raised_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n);
+
 // The same integral for the reflection of one scattering event on the Smith microsurface the
 // reference solver walks (graph/cpu/microsurface.h), whose masking and shadowing are height-correlated:
 // G2 = 1 / (1 + Lambda(l) + Lambda(v)) (Heitz 2014, "Understanding the Masking-Shadowing Function in
@@ -50,7 +54,7 @@ inline constexpr int kAlbedoTableStrata = 192;
 inline constexpr int kMultipleScatteringWalks = 32768;
 
 // The whole table in the kernels' order (albedo_grid.glsl: a row per combination and eta, each of
-// the blocks E, M, C, P and Q): E as round(65535 E) rounded up and then raised to bound E between the nodes
+// the blocks E, M, C, P, Q and B): E as round(65535 E) rounded up and then raised to bound E between the nodes
 // too (below); M as round(65535 M), at most 65535 - E.
 //
 // Why E is raised: the energy-conserving composition lets 1 - E - M through a boundary whose lobe
@@ -82,6 +86,14 @@ int dielectric_albedo_table_entry(int combo, int i, int j, int k);
 // One entry of M before the final cap at 65535 - E, given the node's entry of E before the raise
 // (`single`).
 int dielectric_multiple_table_entry(int combo, int i, int j, int k, int single);
+
+// One run of block B (albedo_grid.glsl), the boost b of the boundary's lobe at each cosine node of
+// (combination, eta node i, slope node j), given the run's final entries of E (`single`) and M
+// (`multiple`) as the table holds them: the b >= 0 for which the lobe f (1 + b(l) b(v)) reflects
+// E + M at every node, by kBoostIterations of a symmetric scaling iteration, stored as
+// floor(65535 b / LAMINA_ALBEDO_BOOST_RANGE).
+std::vector<int> boundary_boost_run(int combo, int i, int j, const int* multiple);
+inline constexpr int kBoostIterations = 200;
 
 // The text of nodes/kernels/dielectric_albedo.inc for a table.
 std::string dielectric_albedo_inc(const std::vector<int>& table);

@@ -16,7 +16,7 @@ const int LAMINA_ALBEDO_SLOPES = 13;
 const int LAMINA_ALBEDO_COSINES = 25;
 const int LAMINA_ALBEDO_COMBOS = 6;  // distributions (beckmann, blinn, ggx) x Fresnel (exact, approximations)
 // The table is stored as an image, one row per (combination, eta) (the GLSL back end binds it as an
-// R16UI texture). A row holds five blocks: E, the single-scattering albedo, as LAMINA_ALBEDO_SLOPES
+// R16UI texture). A row holds six blocks: E, the single-scattering albedo, as LAMINA_ALBEDO_SLOPES
 // runs of LAMINA_ALBEDO_COSINES texels; from column LAMINA_ALBEDO_MULTIPLE_COLUMN, M, what the
 // boundary's microsurface reflects beyond E (energy.glsl), on the same grid; and from column
 // LAMINA_ALBEDO_CONE_COLUMN, C, the share of a conductor lobe of the combination's distribution
@@ -26,15 +26,20 @@ const int LAMINA_ALBEDO_COMBOS = 6;  // distributions (beckmann, blinn, ggx) x F
 // LAMINA_ALBEDO_PATH_COLUMN and LAMINA_ALBEDO_DEPTH_COLUMN, P and Q, how long the path is that the
 // light the boundary lets through takes in the medium below (energy.glsl, lamina_rough_transmittance),
 // as ratios r of cosines stored as round(65535 r / LAMINA_ALBEDO_PATH_RANGE) (under an index below 1,
-// rough facets can bend the light nearer the normal than a smooth boundary does: r above 1).
+// rough facets can bend the light nearer the normal than a smooth boundary does: r above 1); and
+// from column LAMINA_ALBEDO_BOOST_COLUMN, B, the boost b of the boundary's lobe (energy.glsl), on E's
+// grid, stored as floor(65535 b / LAMINA_ALBEDO_BOOST_RANGE) (b reaches that range only at 7 nodes,
+// all of Blinn boundaries of slope 0.58 and over, where the walks' M is noisy).
 const int LAMINA_ALBEDO_BLOCK = LAMINA_ALBEDO_SLOPES * LAMINA_ALBEDO_COSINES;
 const int LAMINA_ALBEDO_MULTIPLE_COLUMN = LAMINA_ALBEDO_BLOCK;
 const int LAMINA_ALBEDO_CONE_COLUMN = 2 * LAMINA_ALBEDO_BLOCK;
 const int LAMINA_ALBEDO_PATH_COLUMN = 3 * LAMINA_ALBEDO_BLOCK;
 const int LAMINA_ALBEDO_DEPTH_COLUMN = 4 * LAMINA_ALBEDO_BLOCK;
-const int LAMINA_ALBEDO_TABLE_WIDTH = 5 * LAMINA_ALBEDO_BLOCK;
+const int LAMINA_ALBEDO_BOOST_COLUMN = 5 * LAMINA_ALBEDO_BLOCK;
+const int LAMINA_ALBEDO_TABLE_WIDTH = 6 * LAMINA_ALBEDO_BLOCK;
 const float LAMINA_ALBEDO_PATH_RANGE = 2.0f;
 const float LAMINA_ALBEDO_PATH_DEPTH = 0.5f;  // the optical depth of block Q
+const float LAMINA_ALBEDO_BOOST_RANGE = 16.0f;
 const int LAMINA_ALBEDO_COMBO_SIZE = LAMINA_ALBEDO_ETAS * LAMINA_ALBEDO_TABLE_WIDTH;
 
 // A table's combination: the distribution's code, times 2, plus 1 for the Schlick and Lazanyi

@@ -10,19 +10,27 @@
 // scattering (lamina_boundary_reflection with height-correlated masking, by quadrature) and E_ms
 // what leaves after two events or more (by random walks; graph/cpu/energy_table.h). The
 // energy-conserving composition (stack.glsl) passes 1 - E(mu) - M(mu) on to the layer below and
-// reflects M by raising the boundary's own lobe: f(l, v) (1 + min(M(l) / E(l), M(v) / E(v))), the
+// reflects M by raising the boundary's own lobe: f(l, v) (1 + b(l) b(v)), b(mu) >= 0 tabulated
+// (block B) so that the raised lobe reflects E(mu) + M(mu) at every node of the grid: b(mu) int f(l,
+// v) b(v) cos_v dv = M(mu), solved for every run of the cosine axis at once by a symmetric scaling
+// iteration with b interpolated as the composition reads it (graph/cpu/energy_table.h). This is the
 // scaling form of multiple-scattering compensation (as in Turquin 2019, which raises a lobe by its
-// missing energy over its albedo) made symmetric by the min, so that it is reciprocal and its albedo
-// at v is at most E(v) (1 + M(v) / E(v)) = E(v) + M(v), and nearly that where the lobe's directions
-// share v's gain (narrow lobes, grazing views). Multiply-scattered light leaves a rough dielectric
-// near its single-scattering lobe, forward, not back toward the light: the separable lobe
-// M(l) M(v) / N of Kulla and Conty 2017, tried first, put light on the side of the light where the
-// reference has none (RMS errors of 140% to 3000% in lamina compare's slices at 80 degrees, where
-// this form has 2% to 5%). E and M depend on the distribution, the Fresnel term, the slope m and the
-// relative index eta, and have no closed form, so they are tabulated: the table holds round(65535 E),
-// rounded up and raised so that its interpolation bounds E between the nodes too
-// (graph/cpu/energy_table.h), and round(65535 M) on a grid of (eta, m, mu) for each combination of
-// distribution and Fresnel term (LAMINA_ALBEDO_COMBOS, lamina_albedo_combo), as an image of
+// missing energy over its albedo, M / E), made symmetric by a product, so that it is reciprocal; for
+// a narrow lobe b is near sqrt(M / E). A min of the two directions' M / E, used first, is bounded
+// pointwise but gives a grazing view's lobe, which also reaches less grazing exits of smaller gain,
+// only half its M (an 8-degree GGX boundary of index 1.45 reflected 0.296 at 89 degrees where the
+// microsurface's walks give 0.316); the geometric mean of the two keeps more but reflected up to
+// 1.0014 over a white base where a rough lobe reaches exits of larger gain. Between the nodes the
+// raised lobe reflects E + M as interpolated to within a few thousandths (energy_table_test.cpp).
+// Multiply-scattered light leaves a rough dielectric near its single-scattering lobe, forward, not
+// back toward the light: the separable lobe M(l) M(v) / N of Kulla and Conty 2017, tried first, put
+// light on the side of the light where the reference has none (RMS errors of 140% to 3000% in
+// lamina compare's slices at 80 degrees, where this form has 2% to 5%). E, M and b depend on the
+// distribution, the Fresnel term, the slope m and the relative index eta, and have no closed form,
+// so they are tabulated: the table holds round(65535 E), rounded up and raised so that its
+// interpolation bounds E between the nodes too (graph/cpu/energy_table.h), round(65535 M), and b
+// (block B) on a grid of (eta, m, mu) for each combination of distribution and Fresnel term
+// (LAMINA_ALBEDO_COMBOS, lamina_albedo_combo), as an image of
 // LAMINA_ALBEDO_TABLE_WIDTH columns (albedo_grid.glsl). The numbers are computed from these kernels
 // by graph/cpu/energy_table.cpp (a test regenerates them with LAMINA_UPDATE_TABLES=1 and checks them
 // otherwise) and stored in nodes/kernels/dielectric_albedo.inc. Each back end defines, before
@@ -130,6 +138,13 @@ LAMINA_FN float lamina_boundary_energy_at(LAMINA_IN(LaminaAlbedoPoint) p, LAMINA
 LAMINA_FN float lamina_boundary_energy(int distribution, int fresnel, vec2 xy, float mu, float eta,
                                        LAMINA_OUT(float) multiple) {
   return lamina_boundary_energy_at(lamina_albedo_point_at(distribution, fresnel, xy, mu, eta), multiple);
+}
+
+// b(mu), the boost of a boundary's lobe at a grid point (block B): the lobe with its multiple
+// scattering is f(l, v) (1 + b(l) b(v)). 0 where the table has no entry.
+LAMINA_FN float lamina_boundary_boost_at(LAMINA_IN(LaminaAlbedoPoint) p) {
+  if (p.first < 0) return 0.0f;
+  return LAMINA_ALBEDO_BOOST_RANGE * lamina_albedo_interpolate(p, LAMINA_ALBEDO_BOOST_COLUMN);
 }
 
 // What a medium of optical depth tau = sigma d (per channel, along its normal) lets through of the

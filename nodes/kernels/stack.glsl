@@ -256,8 +256,9 @@ struct LaminaParams {
 // boundary lets through (energy.glsl: E its single-scattering lobe's albedo, M what its microsurface
 // reflects beyond it) and t(mu) what the medium lets through one way of the light the boundary lets
 // in from mu (exp(-sigma d / mu') under a smooth boundary, less under a rough one, whose paths are
-// longer: lamina_rough_transmittance):
-//   s(l, v) = f_boundary(l, v) (1 + min(M(l) / E(l), M(v) / E(v))) + T(l) t(l) T(v) t(v) / eta^2 s_B(l', v'),
+// longer: lamina_rough_transmittance) and b the boost that makes the boundary's lobe reflect E + M
+// (energy.glsl):
+//   s(l, v) = f_boundary(l, v) (1 + b(l) b(v)) + T(l) t(l) T(v) t(v) / eta^2 s_B(l', v'),
 // f_boundary being lamina_boundary_reflection, raised so that it reflects what the microsurface does,
 //   u(w) = T(w) t(w) S(w') u_B(w'),   c = c_B / (eta^2 (1 - K)),
 // S the series of the light bouncing between the boundary and a layer base's boundary below it
@@ -368,17 +369,16 @@ LAMINA_FN float lamina_cosine_below(float mu, float eta) {
 // is mu_below (<= 0: it cannot enter): T(mu) t, T = 1 - E - M what the boundary lets through
 // (energy.glsl) and t the medium's transmittance along the paths the boundary's transmission lobe
 // gives the light (lamina_rough_transmittance; a smooth boundary's is t(mu_below)). gain receives
-// M(mu) / E(mu), by how much the boundary's multiple scattering raises its single-scattering lobe
-// at mu (0 where E = 0); reflected receives E(mu) + M(mu), which is also what the boundary reflects
-// back down of light reaching it from below at mu_below.
+// b(mu), the boost by which the boundary's multiple scattering raises its single-scattering lobe
+// (f (1 + b(l) b(v)), energy.glsl); reflected receives E(mu) + M(mu), which is also what the
+// boundary reflects back down of light reaching it from below at mu_below.
 LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below,
                                     LAMINA_OUT(float) gain, LAMINA_OUT(float) reflected) {
   // One point on the table's grid serves E, M and the path ratios.
   LaminaAlbedoPoint at = lamina_albedo_point_at(e.distribution, e.fresnel, p.grid, mu, p.eta);
   float multiple = 0.0f;
   reflected = lamina_boundary_energy_at(at, multiple);
-  float single = reflected - multiple;
-  gain = single > 0.0f ? multiple / single : 0.0f;
+  gain = lamina_boundary_boost_at(at);
   if (mu_below <= 0.0f) return vec3(0.0f);
   // A clear medium lets everything through: its ratios are not read.
   vec2 ratios = p.thickness > 0.0f ? lamina_path_ratios_at(at) : vec2(1.0f);
@@ -905,14 +905,19 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
 
 // c of the forward part of layer i over a conductor (lamina_forward_part): 1 / N, N = 2 pi int T(mu_out) t X(mu) mu_out
 // dmu_out over the outer cosines (mu dmu = mu_out dmu_out / eta^2, and the solid angle's eta^2), by
-// Gauss-Legendre on two halves of [0, 1]; 0 where nothing is trapped.
+// Gauss-Legendre on two halves of [0, 1] in s = sqrt(mu_out) (dmu_out = 2 s ds): X climbs steeply
+// at grazing views, where light arrives at the cone's edge, and the nodes even in mu_out missed it
+// (a smooth 4-degree coat of 1.2 over a 1-degree mirror: N 3.2% short of a 200000-point sum, and
+// the forward part as much too bright, 1.004 at 86 degrees; in s, 0.8% over, and within 0.3% for
+// every example and test material).
 LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                           LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
   vec3 sum = vec3(0.0f);
   for (int q = 0; q < 10; ++q) {
     int half_index = q / 5;
-    float mu_out = 0.5f * (float(half_index) + lamina_gauss5_node(q - 5 * half_index));
-    float weight = 0.5f * lamina_gauss5_weight(q - 5 * half_index);
+    float root = 0.5f * (float(half_index) + lamina_gauss5_node(q - 5 * half_index));
+    float mu_out = root * root;
+    float weight = lamina_gauss5_weight(q - 5 * half_index) * root;
     float below = lamina_cosine_below(mu_out, params[i].eta);
     float gain = 0.0f;
     float reflected = 0.0f;
@@ -1153,7 +1158,7 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       }
       s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
                                                params[i].m) *
-                    (1.0f + min(gain_l, gain_v))) +
+                    (1.0f + gain_l * gain_v)) +
                lamina_forward_part(passage_l * trapped_l, passage_v * trapped_v, params[i].forward, l, v);
       s[i].l_on = lb;
       s[i].v_on = vb;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "graph/cpu/energy_table.h"
 #include "graph/cpu/microsurface.h"
@@ -37,6 +38,13 @@ constexpr double kAboveTolerance = 0.08;
 // 1 at the edge of the cone, which moves with eta between the nodes: the table is coarse there.
 constexpr double kBelowToleranceNearOne = 0.1;
 constexpr double kAboveToleranceNearOne = 0.4;
+// How much more than the table's E + M a boundary's raised lobe may reflect between the nodes
+// (measured, with some room): the boost's interpolation across eta and the slope, where M changes
+// fast (rough boundaries), and, under an index below 1, across the moving edge of the cone.
+constexpr double kRaisedOverTolerance = 0.005;
+constexpr double kRaisedOverToleranceNearOne = 0.05;
+constexpr double kRaisedOffTolerance = 0.01;
+constexpr double kRaisedOffToleranceNearOne = 0.05;
 
 // The integral of f(l) cos_l over the directions l above the cosine `cone` (0: the hemisphere) by the
 // midpoint rule in (cos_l, phi) on a fine grid: independent of the normal sampling the table uses.
@@ -94,6 +102,14 @@ TEST_CASE(
     CHECK(single + multiple <= 65535);
     const int cone = int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c, row));
     CHECK(std::abs(cone - lamina::cpu::conductor_cone_table_entry(combo, i, j, c)) <= 2);
+    // The boost is solved from the run's M as the table holds it.
+    std::vector<int> run_of_m(size_t(k::LAMINA_ALBEDO_COSINES));
+    for (int q = 0; q < k::LAMINA_ALBEDO_COSINES; ++q)
+      run_of_m[size_t(q)] =
+          int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_MULTIPLE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + q, row));
+    const int boost =
+        int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_BOOST_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c, row));
+    CHECK(std::abs(boost - lamina::cpu::boundary_boost_run(combo, i, j, run_of_m.data())[size_t(c)]) <= 2);
     // The path ratios come from the same walks: a turn taken otherwise moves them by 1% or so.
     for (bool at_depth : {false, true}) {
       const int column =
@@ -104,6 +120,52 @@ TEST_CASE(
       CHECK(std::abs(path - fresh) <= 2 + fresh / 50);
     }
   }
+}
+
+TEST_CASE("a boundary's lobe raised by its boost reflects what the table says the boundary reflects, E + M") {
+  // At the nodes the boost is solved so that the raised lobe reflects the node's E + M exactly;
+  // between them both are interpolated. Points anywhere, and at grazing views, as for E alone.
+  std::mt19937 rng(0xb0057);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  const int draws = test::kSanitized ? 4 : 160;
+  // Per range of eta as above: the largest amount by which the raised lobe reflects more than the
+  // table's E + M, and by which what the boost adds to the lobe differs from the table's M.
+  double over[3] = {0.0, 0.0, 0.0}, off[3] = {0.0, 0.0, 0.0};
+  std::string where;
+  for (int d = 0; d < draws; ++d) {
+    const int distribution = int(rng() % 3u);
+    const int fresnel = int(rng() % 2u);
+    float mu = 0.02f + 0.98f * uniform(rng);
+    const float y = uniform(rng);
+    const float m = y * y * y;
+    if (d % 2 == 1) {
+      const float a = uniform(rng);
+      mu = 0.001f + 0.2f * a * a;
+    }
+    const float eta = std::exp2(2.0f * (2.0f * uniform(rng) - 1.0f));
+    if (eta < 1.0f && (1.0f - mu * mu) >= eta * eta) mu = std::sqrt(1.0f - eta * eta * (1.0f - mu * mu));
+    const int range = eta >= kNearOne ? 0 : eta >= 1.0f ? 1 : 2;
+    float multiple = 0.0f;
+    const double table =
+        double(k::lamina_boundary_energy(distribution, fresnel, k::lamina_albedo_grid_xy(m, eta), mu, eta, multiple));
+    const double raised = lamina::cpu::raised_albedo_quadrature(distribution, fresnel, mu, m, eta, 128);
+    const double single = lamina::cpu::dielectric_albedo_quadrature(distribution, fresnel, mu, m, eta, 128);
+    if (range == 0 && raised - table > over[0]) {
+      std::ostringstream s;
+      s << "distribution " << distribution << " fresnel " << fresnel << " mu " << mu << " m " << m << " eta " << eta
+        << ": raised " << raised << " table " << table;
+      where = s.str();
+    }
+    over[range] = std::max(over[range], raised - table);
+    off[range] = std::max(off[range], std::abs(raised - single - double(multiple)));
+  }
+  MESSAGE("eta >= " << kNearOne << ": at most " << over[0] << " over E + M (" << where << "), the boost's part "
+                    << off[0] << " off M; 1 <= eta < " << kNearOne << ": " << over[1] << " over, " << off[1]
+                    << " off; eta < 1: " << over[2] << " over, " << off[2] << " off");
+  CHECK(over[0] <= kRaisedOverTolerance);
+  CHECK(off[0] <= kRaisedOffTolerance);
+  CHECK(std::max(over[1], over[2]) <= kRaisedOverToleranceNearOne);
+  CHECK(std::max(off[1], off[2]) <= kRaisedOffToleranceNearOne);
 }
 
 TEST_CASE("a smooth dielectric's albedo in the table is its Fresnel reflectance, and 0 where indices match") {
