@@ -42,9 +42,9 @@ constexpr double kAboveToleranceNearOne = 0.4;
 // (measured, with some room): the boost's interpolation across eta and the slope, where M changes
 // fast (rough boundaries), and, under an index below 1, across the moving edge of the cone.
 constexpr double kRaisedOverTolerance = 0.005;
-constexpr double kRaisedOverToleranceNearOne = 0.05;
+constexpr double kRaisedOverToleranceNearOne = 0.08;
 constexpr double kRaisedOffTolerance = 0.01;
-constexpr double kRaisedOffToleranceNearOne = 0.05;
+constexpr double kRaisedOffToleranceNearOne = 0.08;
 
 // The integral of f(l) cos_l over the directions l above the cosine `cone` (0: the hemisphere) by the
 // midpoint rule in (cos_l, phi) on a fine grid: independent of the normal sampling the table uses.
@@ -61,6 +61,38 @@ double plain_integral(F f, double cone = 0.0) {
     }
   }
   return sum * (1.0 / n) * (M_PI / n);
+}
+
+// A point of the table's domain, drawn at random: any view and slope, or (grazing) a view within 26
+// degrees of the horizon and a slope m = y^3, crowding toward smooth boundaries as the grid does,
+// where E curves most; where eta < 1 the view folded into the cone, where the composition reads
+// the table.
+// `range` is 0 where eta >= kNearOne, 1 between 1 and kNearOne, 2 below 1.
+struct TablePoint {
+  int distribution;
+  int fresnel;
+  float mu;
+  float m;
+  float eta;
+  int range;
+};
+TablePoint draw_table_point(std::mt19937& rng, bool grazing) {
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  TablePoint p;
+  p.distribution = int(rng() % 3u);
+  p.fresnel = int(rng() % 2u);
+  p.mu = 0.02f + 0.98f * uniform(rng);
+  p.m = uniform(rng);
+  if (grazing) {
+    const float a = uniform(rng), y = uniform(rng);
+    p.mu = 0.001f + 0.2f * a * a;
+    p.m = y * y * y;
+  }
+  p.eta = std::exp2(2.0f * (2.0f * uniform(rng) - 1.0f));
+  if (p.eta < 1.0f && (1.0f - p.mu * p.mu) >= p.eta * p.eta)
+    p.mu = std::sqrt(1.0f - p.eta * p.eta * (1.0f - p.mu * p.mu));
+  p.range = p.eta >= kNearOne ? 0 : p.eta >= 1.0f ? 1 : 2;
+  return p;
 }
 
 }  // namespace
@@ -126,25 +158,13 @@ TEST_CASE("a boundary's lobe raised by its boost reflects what the table says th
   // At the nodes the boost is solved so that the raised lobe reflects the node's E + M exactly;
   // between them both are interpolated. Points anywhere, and at grazing views, as for E alone.
   std::mt19937 rng(0xb0057);
-  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   const int draws = test::kSanitized ? 4 : 160;
   // Per range of eta as above: the largest amount by which the raised lobe reflects more than the
   // table's E + M, and by which what the boost adds to the lobe differs from the table's M.
   double over[3] = {0.0, 0.0, 0.0}, off[3] = {0.0, 0.0, 0.0};
   std::string where;
   for (int d = 0; d < draws; ++d) {
-    const int distribution = int(rng() % 3u);
-    const int fresnel = int(rng() % 2u);
-    float mu = 0.02f + 0.98f * uniform(rng);
-    const float y = uniform(rng);
-    const float m = y * y * y;
-    if (d % 2 == 1) {
-      const float a = uniform(rng);
-      mu = 0.001f + 0.2f * a * a;
-    }
-    const float eta = std::exp2(2.0f * (2.0f * uniform(rng) - 1.0f));
-    if (eta < 1.0f && (1.0f - mu * mu) >= eta * eta) mu = std::sqrt(1.0f - eta * eta * (1.0f - mu * mu));
-    const int range = eta >= kNearOne ? 0 : eta >= 1.0f ? 1 : 2;
+    const auto [distribution, fresnel, mu, m, eta, range] = draw_table_point(rng, d % 2 == 1);
     float multiple = 0.0f;
     const double table =
         double(k::lamina_boundary_energy(distribution, fresnel, k::lamina_albedo_grid_xy(m, eta), mu, eta, multiple));
@@ -191,28 +211,15 @@ TEST_CASE("a smooth dielectric's albedo in the table is its Fresnel reflectance,
 
 TEST_CASE(
     "the interpolated dielectric albedo bounds the quadrature from above between the nodes, and stays close to it") {
-  // Half the points anywhere, half at grazing views of smooth boundaries, where E curves most.
+  // Half the points anywhere, half at grazing views (draw_table_point), where E curves most.
   std::mt19937 rng(0xa1be);
-  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   const int draws = test::kSanitized ? 8 : 600;
   // Per range of eta (>= kNearOne, between 1 and kNearOne, below 1): the largest amounts by which
   // the table falls below and rises above the quadrature.
   double below[3] = {0.0, 0.0, 0.0}, above[3] = {0.0, 0.0, 0.0};
   std::string where;
   for (int d = 0; d < draws; ++d) {
-    int distribution = int(rng() % 3u);
-    int fresnel = int(rng() % 2u);
-    float mu = 0.02f + 0.98f * uniform(rng);
-    float m = uniform(rng);
-    if (d % 2 == 1) {
-      const float a = uniform(rng), b = uniform(rng);
-      mu = 0.001f + 0.2f * a * a;
-      m = b * b * b;
-    }
-    float eta = std::exp2(2.0f * (2.0f * uniform(rng) - 1.0f));
-    // Where eta < 1 the composition reads E only inside the cone light can enter.
-    if (eta < 1.0f && (1.0f - mu * mu) >= eta * eta) mu = std::sqrt(1.0f - eta * eta * (1.0f - mu * mu));
-    const int range = eta >= kNearOne ? 0 : eta >= 1.0f ? 1 : 2;
+    const auto [distribution, fresnel, mu, m, eta, range] = draw_table_point(rng, d % 2 == 1);
     double exact = lamina::cpu::dielectric_albedo_quadrature(distribution, fresnel, mu, m, eta, 128);
     double table = double(k::lamina_dielectric_albedo(distribution, fresnel, mu, m, eta));
     if (range == 0 && exact - table > below[0]) {
