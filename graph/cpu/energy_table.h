@@ -88,10 +88,12 @@ int dielectric_albedo_table_entry(int combo, int i, int j, int k);
 int dielectric_multiple_table_entry(int combo, int i, int j, int k, int single);
 
 // One run of block B (albedo_grid.glsl), the boost b of the boundary's lobe at each cosine node of
-// (combination, eta node i, slope node j), given the run's final entries of E (`single`) and M
-// (`multiple`) as the table holds them: the b >= 0 for which the lobe f (1 + b(l) b(v)) reflects
-// E + M at every node, by kBoostIterations of a symmetric scaling iteration, stored as
-// floor(65535 b / LAMINA_ALBEDO_BOOST_RANGE).
+// (combination, eta node i, slope node j), given the run's final entries of M (`multiple`, after
+// the cap at 65535 - E) as the table holds them: the b >= 0 for which the lobe f (1 + b(l) b(v))
+// reflects its own E plus M at every node, b(mu) int f(l, v) b(v) cos_v = M(mu) with b
+// interpolated along the cosine axis as the kernels read it, by kBoostIterations of the symmetric
+// scaling iteration b <- sqrt(b M / (K b)), stored as floor(65535 b / LAMINA_ALBEDO_BOOST_RANGE).
+// 0 for a smooth boundary (slope node 0), which scatters once only.
 std::vector<int> boundary_boost_run(int combo, int i, int j, const int* multiple);
 inline constexpr int kBoostIterations = 200;
 

@@ -374,7 +374,7 @@ LAMINA_FN float lamina_cosine_below(float mu, float eta) {
 // boundary reflects back down of light reaching it from below at mu_below.
 LAMINA_FN vec3 lamina_layer_passage(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu, float mu_below,
                                     LAMINA_OUT(float) gain, LAMINA_OUT(float) reflected) {
-  // One point on the table's grid serves E, M and the path ratios.
+  // One point on the table's grid serves E, M, the boost and the path ratios.
   LaminaAlbedoPoint at = lamina_albedo_point_at(e.distribution, e.fresnel, p.grid, mu, p.eta);
   float multiple = 0.0f;
   reflected = lamina_boundary_energy_at(at, multiple);

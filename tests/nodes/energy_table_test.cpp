@@ -135,7 +135,7 @@ TEST_CASE(
     const int cone = int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_CONE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + c, row));
     CHECK(std::abs(cone - lamina::cpu::conductor_cone_table_entry(combo, i, j, c)) <= 2);
     // The boost is solved from the run's M as the table holds it.
-    std::vector<int> run_of_m(size_t(k::LAMINA_ALBEDO_COSINES));
+    std::vector<int> run_of_m(static_cast<size_t>(k::LAMINA_ALBEDO_COSINES));
     for (int q = 0; q < k::LAMINA_ALBEDO_COSINES; ++q)
       run_of_m[size_t(q)] =
           int(k::lamina_albedo_texel(k::LAMINA_ALBEDO_MULTIPLE_COLUMN + j * k::LAMINA_ALBEDO_COSINES + q, row));
