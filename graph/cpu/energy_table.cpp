@@ -39,16 +39,22 @@ double over_mirrored_directions(int distribution, float m, vec3 v, int n, Integr
 
 vec3 view_of_cosine(float mu) { return vec3(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu); }
 
+// The boundary's reflection f(l, v) cos_l over the density of l drawn by over_mirrored_directions
+// from v: D(h) cos_h / (4 v.h) (Walter et al. 2007, eq. 14), with D from h's components as the
+// evaluation computes it (for narrow lobes cos_h rounds to 1); 0 where the density is not positive.
+double reflection_over_density(int distribution, int fresnel, float m, float eta, vec3 l, vec3 v, vec3 h,
+                               float v_dot_h) {
+  const double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
+  if (!(pdf > 0.0)) return 0.0;
+  return double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf;
+}
+
 }  // namespace
 
 double dielectric_albedo_quadrature(int distribution, int fresnel, float mu, float m, float eta, int n) {
   const vec3 v = view_of_cosine(mu);
   return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
-    // The density of l: D(h) cos_h / (4 v.h) (Walter et al. 2007, eq. 14), with D from h's
-    // components as the evaluation computes it (for narrow lobes cos_h rounds to 1).
-    double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
-    if (!(pdf > 0.0)) return 0.0;
-    return double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf;
+    return reflection_over_density(distribution, fresnel, m, eta, l, v, h, v_dot_h);
   });
 }
 
@@ -78,10 +84,8 @@ double raised_albedo_quadrature(int distribution, int fresnel, float mu, float m
   const vec2 xy = k::lamina_albedo_grid_xy(m, eta);
   const float boost_v = k::lamina_boundary_boost_at(k::lamina_albedo_point_at(distribution, fresnel, xy, mu, eta));
   return over_mirrored_directions(distribution, m, v, n, [&](vec3 l, vec3 h, float v_dot_h) {
-    double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(v_dot_h));
-    if (!(pdf > 0.0)) return 0.0;
     const float boost_l = k::lamina_boundary_boost_at(k::lamina_albedo_point_at(distribution, fresnel, xy, l.z, eta));
-    return double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(l.z) / pdf *
+    return reflection_over_density(distribution, fresnel, m, eta, l, v, h, v_dot_h) *
            (1.0 + double(boost_v) * double(boost_l));
   });
 }
@@ -226,6 +230,7 @@ std::vector<int> boundary_boost_run(int combo, int i, int j, const int* multiple
   const float eta = k::lamina_albedo_node_eta(i);
   const float m = k::lamina_albedo_node_slope(j);
   const double strata = double(kAlbedoTableStrata) * double(kAlbedoTableStrata);
+  const vec2 xy = k::lamina_albedo_grid_xy(m, eta);
   // K[c][q]: what the lobe at node c's view reflects, weighted by the hat function of cosine node q
   // on the grid's axis (the composition interpolates b linearly there), so that (K b)_c is exactly
   // the integral of f(l_c, v) b(v) cos_v for the interpolated b.
@@ -234,15 +239,11 @@ std::vector<int> boundary_boost_run(int combo, int i, int j, const int* multiple
     const vec3 l = view_of_cosine(k::lamina_albedo_node_cosine(c, eta));
     own[size_t(c)] =
         over_mirrored_directions(distribution, m, l, kAlbedoTableStrata, [&](vec3 v, vec3 h, float l_dot_h) {
-          const double pdf = double(k::d_microfacet_h(distribution, h, m)) * double(h.z) / (4.0 * double(l_dot_h));
-          if (!(pdf > 0.0)) return 0.0;
-          const double w =
-              double(k::lamina_boundary_reflection(l, v, eta, distribution, fresnel, m)) * double(v.z) / pdf;
-          const float z = std::sqrt(k::lamina_albedo_axis_cosine(v.z, eta)) * float(n - 1);
-          const int q = std::min(int(z), n - 2);
-          const double fz = double(z - float(q));
-          kernel[size_t(c * n + q)] += w * (1.0 - fz) / strata;
-          kernel[size_t(c * n + q + 1)] += w * fz / strata;
+          const double w = reflection_over_density(distribution, fresnel, m, eta, v, l, h, l_dot_h);
+          // v's node on the cosine axis and the fraction beyond, as the kernels find them.
+          const k::LaminaAlbedoPoint at = k::lamina_albedo_point_at(distribution, fresnel, xy, v.z, eta);
+          kernel[size_t(c * n + at.k)] += w * (1.0 - double(at.fz)) / strata;
+          kernel[size_t(c * n + at.k + 1)] += w * double(at.fz) / strata;
           return w;
         });
     target[size_t(c)] = double(multiple[c]) / 65535.0;
