@@ -928,9 +928,12 @@ LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     sum += (weight * mu_out) * passage *
            lamina_trapped_light(entries, params, i, mu_out, below, reflected, echo, inside, keep);
   }
+  // A thick absorbing layer can take N below float's range of reciprocals (a random stack: 21.6
+  // units of absorption 1.34 made 1 / N infinite in red); where N is below LAMINA_MIN_DENOM the
+  // forward part, of the order of N itself, is 0.
   vec3 norm = (2.0f * LAMINA_PI) * sum;
-  return vec3(norm.x > 0.0f ? 1.0f / norm.x : 0.0f, norm.y > 0.0f ? 1.0f / norm.y : 0.0f,
-              norm.z > 0.0f ? 1.0f / norm.z : 0.0f);
+  return vec3(norm.x > LAMINA_MIN_DENOM ? 1.0f / norm.x : 0.0f, norm.y > LAMINA_MIN_DENOM ? 1.0f / norm.y : 0.0f,
+              norm.z > LAMINA_MIN_DENOM ? 1.0f / norm.z : 0.0f);
 }
 
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
