@@ -74,10 +74,12 @@ bool collect_paths(const Graph& g, size_t at, std::vector<size_t> layers, std::v
     layers.push_back(at);
     at = *base;
   }
-  if (g.decl(at).kind == NodeKind::Mix) {
-    auto a = g.linked(at, "a");
-    auto b = g.linked(at, "b");
-    return a && b && collect_paths(g, *a, layers, paths) && collect_paths(g, *b, layers, paths);
+  if (g.decl(at).kind == NodeKind::Mix || g.decl(at).kind == NodeKind::Select) {
+    const std::vector<size_t> below = g.stacks_below(at);
+    if (below.size() < 2) return false;
+    for (size_t stack : below)
+      if (!collect_paths(g, stack, layers, paths)) return false;
+    return true;
   }
   paths.push_back({std::move(layers), at});
   return true;

@@ -112,9 +112,11 @@ class Compiler final : public InputSource {
   }
 
   // The entry of stack node `i` reached from entry `parent` (side: which stack of a mix parent),
-  // then its children: the node's structural stack parameters in declaration order (a layer's
-  // base; a mix's a and b). Returns the entry's index.
-  int expand(size_t i, int parent, int side) {
+  // then its children: the stacks the node sits on or blends, in declaration order (a layer's
+  // base; a mix's a and b). A node over N > 2 stacks (a select) becomes a chain of N - 1 two-way
+  // entries: entry `part` k has stack k first and, second, entry k + 1, or for the last, stack
+  // N - 1. Returns the entry's index.
+  int expand(size_t i, int parent, int side, int part = 0) {
     if (int(program_.stack.size()) >= kMaxStackEntries)
       throw std::logic_error("compile: the stack of '" + program_.name + "' exceeds " +
                              std::to_string(kMaxStackEntries) + " entries, which the checker refuses");
@@ -125,16 +127,19 @@ class Compiler final : public InputSource {
     entry.side = side;
     entry.decl = &decl;
     entry.node = g_.node(i).id;
-    NodeLowering lowering(g_, i, file_, policy_, *this, &entry, nullptr);
+    NodeLowering lowering(g_, i, file_, policy_, *this, &entry, nullptr, part);
     decl.lower(lowering);
     const int index = int(program_.stack.size());
     program_.stack.push_back(std::move(entry));
-    int child = 0;
-    for (const ParamDecl& p : decl.params) {
-      if (p.type != ValueType::Stack) continue;
-      const int below = expand(*g_.linked(i, p.name), index, child);
-      (child == 0 ? program_.stack[size_t(index)].first : program_.stack[size_t(index)].second) = below;
-      ++child;
+    const std::vector<size_t> below = g_.stacks_below(i);
+    const size_t k = size_t(part);
+    if (below.size() > k) {
+      const int first = expand(below[k], index, 0);
+      program_.stack[size_t(index)].first = first;
+    }
+    if (below.size() > k + 1) {
+      const int second = below.size() > k + 2 ? expand(i, index, 1, part + 1) : expand(below[k + 1], index, 1);
+      program_.stack[size_t(index)].second = second;
     }
     return index;
   }

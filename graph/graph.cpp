@@ -9,7 +9,7 @@ std::string describe_expected(ValueType expected) {
   switch (expected) {
     case ValueType::Interface: return "an interface/* node";
     case ValueType::Medium: return "a medium/* node";
-    case ValueType::Stack: return "a layer, mix or substrate/* node";
+    case ValueType::Stack: return "a layer, mix, select or substrate/* node";
     default: return "an output of type " + std::string(type_name(expected));
   }
 }
@@ -213,6 +213,14 @@ std::optional<size_t> Graph::linked(size_t i, std::string_view param) const {
   for (size_t e : incoming_[i])
     if (edges_[e].input->name == param) return edges_[e].from;
   return std::nullopt;
+}
+
+std::vector<size_t> Graph::stacks_below(size_t i) const {
+  std::vector<size_t> below;
+  for (const ParamDecl& p : decls_[i]->params)
+    if (p.type == ValueType::Stack)
+      if (auto target = linked(i, p.name)) below.push_back(*target);
+  return below;
 }
 
 const Value* Graph::value(size_t i, std::string_view param) const {

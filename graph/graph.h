@@ -40,6 +40,9 @@ class Graph {
   const std::vector<size_t>& topological_order() const { return order_; }
   // The node linked to parameter `param` of node `i`, if that parameter is a link.
   std::optional<size_t> linked(size_t i, std::string_view param) const;
+  // The stacks node i sits on or blends: the nodes its given stack parameters link to, in
+  // declaration order (a layer's base; a mix's a and b; a select's stack_0, stack_1, ...).
+  std::vector<size_t> stacks_below(size_t i) const;
   // Whether node i feeds the surface, directly or indirectly (or is the surface).
   bool used(size_t i) const { return used_[i]; }
 
@@ -56,7 +59,7 @@ class Graph {
   size_t surface_ = 0;
 };
 
-// What a link of type `expected` may point at, in words: "a layer, mix or substrate/* node".
+// What a link of type `expected` may point at, in words: "a layer, mix, select or substrate/* node".
 std::string describe_expected(ValueType expected);
 
 }  // namespace lamina

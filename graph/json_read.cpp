@@ -395,7 +395,17 @@ class Reader {
       case ValueType::Stack:
         error(pointer, "expected " + p.expected_text() + ", found " + describe(j), p.doc);
         return std::nullopt;
-      case ValueType::Integer:
+      case ValueType::Integer: {
+        // Counts and seeds: constants only (registry_test.cpp keeps them unlinkable).
+        if (!j.is_number()) return expected(p.expected_text());
+        double v = j.get<double>();
+        if (v != std::floor(v)) {
+          error(pointer, p.name + " = " + number_text(v) + " is not a whole number", p.doc);
+          return std::nullopt;
+        }
+        if (!check_number(p, v, pointer, p.name)) return std::nullopt;
+        return Value{v};
+      }
       case ValueType::Quaternion:
       case ValueType::Object:
         // Scene-file types: tests/nodes/registry_test.cpp keeps them out of node declarations.

@@ -61,8 +61,15 @@ class Writer {
     auto emit = [&](const Param& p) { out += ", " + quoted(p.name) + ": " + value_json(p.value); };
     if (decl) {
       for (const auto& p : decl->params)
-        for (const auto& given : n.params)
-          if (given.name == p.name) emit(given);
+        for (const auto& given : n.params) {
+          if (given.name != p.name) continue;
+          // Whole-number parameters (counts, seeds) are written as JSON integers: 4, not 4.0.
+          const double* whole = p.type == ValueType::Integer ? std::get_if<double>(&given.value) : nullptr;
+          if (whole)
+            out += ", " + quoted(p.name) + ": " + std::to_string(static_cast<long long>(*whole));
+          else
+            emit(given);
+        }
     } else {
       for (const auto& given : n.params) emit(given);
     }

@@ -28,8 +28,15 @@ class NodeLowering {
   // Called by compile.cpp. `entry` is the stack entry a stack node fills; `op` the op a texture or
   // math node fills; the other is null.
   NodeLowering(const Graph& graph, size_t node, const std::string& file, const AssetPolicy& policy,
-               const InputSource& inputs, StackEntry* entry, TextureOp* op)
-      : graph_(graph), node_(node), file_(file), policy_(policy), inputs_(inputs), entry_(entry), op_(op) {}
+               const InputSource& inputs, StackEntry* entry, TextureOp* op, int part = 0)
+      : graph_(graph),
+        node_(node),
+        file_(file),
+        policy_(policy),
+        inputs_(inputs),
+        entry_(entry),
+        op_(op),
+        part_(part) {}
 
   const Graph& graph() const { return graph_; }
   size_t index() const { return node_; }
@@ -54,6 +61,10 @@ class NodeLowering {
   // The node a structural parameter links to (a layer's interface, medium, base).
   std::optional<size_t> linked(std::string_view param) const { return graph_.linked(node_, param); }
 
+  // Which of its entries a stack node over more than two stacks is lowering: such a node (a
+  // select) becomes a chain of two-way entries, entry k blending stack k with the entries after it
+  // (compile.cpp). 0 for every other node.
+  int part() const { return part_; }
   // A stack node's entry; a layer's interface and medium fill the layer's entry.
   StackEntry& entry() const;
   // Runs the `lower` of the node that structural parameter `param` links to on this entry (a layer
@@ -75,6 +86,7 @@ class NodeLowering {
   const InputSource& inputs_;
   StackEntry* entry_;
   TextureOp* op_;
+  int part_;
 };
 
 }  // namespace lamina

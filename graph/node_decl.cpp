@@ -15,6 +15,7 @@ std::string_view kind_name(NodeKind kind) {
     case NodeKind::Substrate: return "substrate";
     case NodeKind::Layer: return "layer";
     case NodeKind::Mix: return "mix";
+    case NodeKind::Select: return "select";
     case NodeKind::Texture: return "texture";
     case NodeKind::Math: return "math";
   }

@@ -24,7 +24,7 @@ namespace glsl {
 class OpWriter;
 }
 
-enum class NodeKind { Interface, Medium, Substrate, Layer, Mix, Texture, Math };
+enum class NodeKind { Interface, Medium, Substrate, Layer, Mix, Select, Texture, Math };
 
 std::string_view kind_name(NodeKind kind);
 

@@ -85,7 +85,7 @@ struct StackEntry {
   // The frame slot: a normal input will tilt the entry's frame; the shading normal until then.
   InputRef normal = vec3_input(glm::vec3(0.0f, 0.0f, 1.0f));
 
-  // Where it came from: the layer, mix or substrate node, and a layer's interface and medium.
+  // Where it came from: the layer, mix, select or substrate node, and a layer's interface and medium.
   const NodeDecl* decl = nullptr;
   std::string node;
   const NodeDecl* interface_decl = nullptr;

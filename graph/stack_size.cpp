@@ -9,28 +9,28 @@ namespace lamina {
 
 StackSize measure_stack(const Graph& graph) {
   StackSize size;
-  std::vector<int> lobes(graph.size(), 0);
-  // A structural link left out (an error reported elsewhere) counts as no lobe.
-  auto lobes_of = [&](size_t i, const char* param) {
-    const auto linked = graph.linked(i, param);
-    return linked ? lobes[*linked] : 0;
-  };
+  // Per node, its lobes and the entries it compiles to, counted over every path below it. A
+  // structural link left out (an error reported elsewhere) counts as nothing.
+  std::vector<int> lobes(graph.size(), 0), entries(graph.size(), 0);
   for (size_t i : graph.topological_order()) {
     if (!graph.used(i)) continue;
     const NodeDecl& decl = graph.decl(i);
     switch (decl.kind) {
       case NodeKind::Layer:
-        ++size.stack_nodes;
-        lobes[i] = 1 + lobes_of(i, "base");
-        break;
       case NodeKind::Mix:
+      case NodeKind::Select:
+      case NodeKind::Substrate: {
         ++size.stack_nodes;
-        lobes[i] = lobes_of(i, "a") + lobes_of(i, "b");
+        const std::vector<size_t> below = graph.stacks_below(i);
+        // A layer adds its interface's lobe; a select of N stacks is a chain of N - 1 entries.
+        lobes[i] = decl.kind == NodeKind::Layer || decl.kind == NodeKind::Substrate ? 1 : 0;
+        entries[i] = decl.kind == NodeKind::Select ? std::max(int(below.size()) - 1, 1) : 1;
+        for (size_t b : below) {
+          lobes[i] += lobes[b];
+          entries[i] += entries[b];
+        }
         break;
-      case NodeKind::Substrate:
-        ++size.stack_nodes;
-        lobes[i] = 1;
-        break;
+      }
       case NodeKind::Texture:
       case NodeKind::Math:
         for (const OutputDecl& output : decl.outputs) size.registers += value_components(output.type);
@@ -39,8 +39,10 @@ StackSize measure_stack(const Graph& graph) {
       case NodeKind::Medium: break;
     }
     lobes[i] = std::min(lobes[i], kMaxLobes + 1);
+    entries[i] = std::min(entries[i], kMaxStackEntries + 1);
   }
   size.lobes = lobes[graph.surface()];
+  size.entries = entries[graph.surface()];
   return size;
 }
 

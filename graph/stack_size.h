@@ -11,9 +11,12 @@
 namespace lamina {
 
 struct StackSize {
-  int stack_nodes = 0;  // layers, mixes and substrates that feed the surface
-  int lobes = 0;        // one per interface and substrate on each path through the mixes; at most kMaxLobes + 1
-  int registers = 0;    // floats the texture and math nodes feeding the surface produce
+  int stack_nodes = 0;  // layers, mixes, selects and substrates that feed the surface
+  // The compiled stack's entries: one per stack node on each path through the mixes, N - 1 for a
+  // select of N stacks (its chain); below 2 kMaxLobes whenever the lobes fit, at most kMaxStackEntries + 1.
+  int entries = 0;
+  int lobes = 0;      // one per interface and substrate on each path through the mixes; at most kMaxLobes + 1
+  int registers = 0;  // floats the texture and math nodes feeding the surface produce
 };
 
 // Linear in the graph's size: every count is made once per node, in topological order, and the

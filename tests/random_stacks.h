@@ -1,8 +1,11 @@
 // Random valid materials, for tests that must hold for every stack and not only the examples: a
 // seeded generator of material files whose stacks nest layers (with clear, absorbing or no media)
-// and mixes over every substrate, with every distribution and Fresnel term, both models and roughness forms,
-// and some parameters driven by textures (a checker, remapped into the parameter's range). The
-// checker must accept every file it writes; a refusal is a generator bug the caller reports.
+// and mixes or selects over every substrate, with every distribution and Fresnel term, both models and
+// roughness forms, and some parameters driven by textures (a checker, a noise, Voronoi cells or a
+// marble, remapped into the parameter's range; colours from a checker, Voronoi cells or a math/mix
+// of two by a noise). The checker must accept every file it writes; a refusal is a generator bug
+// the caller reports. Which texture and whether a mix is a select come from a second stream of
+// draws, so that adding kinds there leaves the stacks of the first stream as they were.
 // Every random draw is a statement of its own: the operands of + are evaluated in an order each
 // compiler chooses, so one expression with two draws would give GCC and clang different stacks.
 #pragma once
@@ -16,7 +19,7 @@ namespace lamina::test {
 
 class RandomStacks {
  public:
-  explicit RandomStacks(uint32_t seed) : rng_(seed) {}
+  explicit RandomStacks(uint32_t seed) : rng_(seed), kinds_(seed ^ 0x9E3779B9u) {}
 
   // A material file with `count` materials named random_0, random_1, ...
   std::string file(int count) {
@@ -55,6 +58,7 @@ class RandomStacks {
     }
     if (mixes_left_ > 0 && depth < 4 && chance(0.3)) {
       --mixes_left_;
+      if (kind_chance(0.3)) return select(depth);
       const std::string id = fresh("mix");
       const std::string weight = scalar(0.0, 1.0);
       const std::string a = stack(depth + 1);
@@ -63,6 +67,22 @@ class RandomStacks {
       return id;
     }
     return substrate();
+  }
+
+  // One of 2 to 4 stacks per Voronoi cell: the cell's value remapped to [0, N).
+  std::string select(int depth) {
+    const std::string id = fresh("select");
+    const int count = 2 + kind_pick(3);
+    const std::string cells = voronoi();
+    const std::string index = fresh("index");
+    node(index, R"("type": "math/remap", "value": "@)" + cells + R"(.value", "out_max": )" + std::to_string(count));
+    std::string stacks;
+    for (int k = 0; k < count; ++k) {
+      const std::string below = stack(depth + 1);
+      stacks += R"(, "stack_)" + std::to_string(k) + R"(": "@)" + below + "\"";
+    }
+    node(id, R"("type": "select", "index": "@)" + index + "\"" + stacks);
+    return id;
   }
 
   std::string interface() {
@@ -130,15 +150,70 @@ class RandomStacks {
     if (!chance(0.2)) return number(a);
     const double b = uniform(lo, hi);
     const std::string id = fresh("remap");
-    node(id, R"("type": "math/remap", "value": "@)" + checker() + R"(.value", "out_min": )" + number(a) +
-                 R"(, "out_max": )" + number(b));
+    const std::string source = grey();
+    node(id, R"("type": "math/remap", "value": ")" + source + R"(", "out_min": )" + number(a) + R"(, "out_max": )" +
+                 number(b));
     return "\"@" + id + ".value\"";
   }
 
-  // A diffuse albedo: a constant, or one time in four a checker's colour.
+  // A grey map in [0, 1], as a link: a checker's value, a noise, Voronoi cells' value or a marble.
+  std::string grey() {
+    const int which = kind_pick(4);
+    if (which == 1) return "@" + noise();
+    if (which == 2) return "@" + voronoi() + ".value";
+    if (which == 3) return "@" + marble();
+    return "@" + checker() + ".value";
+  }
+
+  // A diffuse albedo: a constant, or one time in four a checker's colour, Voronoi cells' colour or
+  // a math/mix of two colours by a noise.
   std::string albedo() {
-    if (chance(0.25)) return "\"@" + checker() + ".color\"";
-    return colour(0.0, 1.0);
+    if (!chance(0.25)) return colour(0.0, 1.0);
+    const int which = kind_pick(3);
+    if (which == 1) return "\"@" + voronoi() + ".color\"";
+    if (which == 2) {
+      const std::string id = fresh("tint");
+      const std::string a = colour(0.0, 1.0);
+      const std::string b = colour(0.0, 1.0);
+      const std::string by = noise();
+      node(id, R"("type": "math/mix", "a": )" + a + R"(, "b": )" + b + R"(, "factor": "@)" + by + "\"");
+      return "\"@" + id + "\"";
+    }
+    return "\"@" + checker() + ".color\"";
+  }
+
+  // Procedural textures over uv or position, with parameters from the second stream.
+  std::string space() { return kind_chance(0.5) ? R"("space": "uv")" : R"("space": "position")"; }
+  std::string noise() {
+    const std::string id = fresh("noise");
+    const std::string where = space();
+    const std::string scale = number(kind_uniform(1.0, 12.0));
+    const std::string mode = kind_chance(0.5) ? "fbm" : "turbulence";
+    const std::string octaves = std::to_string(1 + kind_pick(5));
+    const std::string seed = std::to_string(kind_pick(1000));
+    node(id, R"("type": "texture/noise", )" + where + R"(, "scale": )" + scale + R"(, "mode": ")" + mode +
+                 R"(", "octaves": )" + octaves + R"(, "seed": )" + seed);
+    return id;
+  }
+  std::string voronoi() {
+    const std::string id = fresh("cells");
+    const std::string where = space();
+    const std::string scale = number(kind_uniform(2.0, 20.0));
+    const std::string jitter = number(kind_uniform(0.0, 1.0));
+    const std::string seed = std::to_string(kind_pick(1000));
+    node(id, R"("type": "texture/voronoi", )" + where + R"(, "scale": )" + scale + R"(, "jitter": )" + jitter +
+                 R"(, "seed": )" + seed);
+    return id;
+  }
+  std::string marble() {
+    const std::string id = fresh("marble");
+    const std::string where = space();
+    const std::string stripes = number(kind_uniform(0.5, 6.0));
+    const std::string strength = number(kind_uniform(0.0, 3.0));
+    const std::string octaves = std::to_string(1 + kind_pick(4));
+    node(id, R"("type": "texture/marble", )" + where + R"(, "stripes": )" + stripes + R"(, "strength": )" + strength +
+                 R"(, "octaves": )" + octaves);
+    return id;
   }
 
   std::string checker() {
@@ -173,8 +248,13 @@ class RandomStacks {
   double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
   bool chance(double p) { return uniform(0.0, 1.0) < p; }
   int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
+  // The second stream: kinds of texture, selects and the new textures' parameters.
+  double kind_uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(kinds_); }
+  bool kind_chance(double p) { return kind_uniform(0.0, 1.0) < p; }
+  int kind_pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(kinds_); }
 
   std::mt19937 rng_;
+  std::mt19937 kinds_;
   std::ostringstream nodes_;
   int next_id_ = 0;
   int layers_left_ = 0;

@@ -17,7 +17,7 @@ struct AlbedoOptions {
   MaterialArg material;
   double theta_deg = 0.0;
   int points = 1024;
-  std::string uv = "0,0";
+  ContextArg context;
   bool json = false;
 };
 
@@ -29,7 +29,7 @@ int run_albedo(const AlbedoOptions& o) {
               << "] (quadrature points per lobe)\n";
     return kExitInvalid;
   }
-  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  const std::optional<ShadingContext> ctx = parse_context(o.context);
   if (!ctx) return kExitInvalid;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
@@ -51,7 +51,7 @@ void add_albedo(CLI::App& app, Runner& runner) {
   add_material_options(*cmd, o->material);
   cmd->add_option("--theta", o->theta_deg, "view angle from the normal in degrees, in [0, 90)")->required();
   cmd->add_option("--points", o->points, "quadrature points per lobe")->capture_default_str();
-  cmd->add_option("--uv", o->uv, "texture coordinates U,V of the shading point")->capture_default_str();
+  add_context_options(*cmd, o->context);
   cmd->add_flag("--json", o->json, "print {\"albedo\": [r, g, b], \"theta_deg\": t} at full float precision");
   cmd->footer(
       "The view direction is (sin theta, 0, cos theta) in the local frame. The albedo is the fraction of light "

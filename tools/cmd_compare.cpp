@@ -23,7 +23,7 @@ struct CompareCliOptions {
   int64_t albedo_walks = int64_t(1) << 16;
   int64_t slice_walks = int64_t(1) << 14;
   uint64_t seed = 0;
-  std::string uv = "0,0";
+  ContextArg context;
   bool json = false;
   std::string plot;  // the figure's file, if any
   int size = kFigureDefaultSize;
@@ -90,7 +90,7 @@ int run_compare(const CompareCliOptions& o) {
       std::cerr << "lamina: " << name << ": " << walks << " is outside [1, " << kMaxCompareWalks << "]\n";
       return kExitInvalid;
     }
-  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  const std::optional<ShadingContext> ctx = parse_context(o.context);
   if (!ctx) return kExitInvalid;
   FigureFile figure;
   if (!o.plot.empty())
@@ -127,7 +127,7 @@ void add_compare(CLI::App& app, Runner& runner) {
   cmd->add_option("--albedo-walks", o->albedo_walks, "reference walks per albedo angle")->capture_default_str();
   cmd->add_option("--slice-walks", o->slice_walks, "reference walks per BRDF point")->capture_default_str();
   cmd->add_option("--seed", o->seed, "mixed into the reference's seeds")->capture_default_str();
-  cmd->add_option("--uv", o->uv, "texture coordinates U,V of the shading point")->capture_default_str();
+  add_context_options(*cmd, o->context);
   cmd->add_flag("--json", o->json, "print every value, its reference and the errors as JSON");
   cmd->add_option("--plot", o->plot,
                   "also draw the comparison into this image (e.g. compare.png): the slices of lamina plot with the "

@@ -14,7 +14,7 @@ namespace {
 struct EvalOptions {
   MaterialArg material;
   std::string wi, wo;
-  std::string uv = "0,0";
+  ContextArg context;
   bool json = false;
 };
 
@@ -22,7 +22,7 @@ int run_eval(const EvalOptions& o) {
   auto wi = parse_direction("--wi", o.wi);
   auto wo = parse_direction("--wo", o.wo);
   if (!wi || !wo) return kExitInvalid;
-  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  const std::optional<ShadingContext> ctx = parse_context(o.context);
   if (!ctx) return kExitInvalid;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
@@ -46,7 +46,7 @@ void add_eval(CLI::App& app, Runner& runner) {
   cmd->add_option("--wi", o->wi, "direction to the light, X,Y,Z in the local frame (z = normal); normalised")
       ->required();
   cmd->add_option("--wo", o->wo, "direction to the viewer, X,Y,Z in the local frame; normalised")->required();
-  cmd->add_option("--uv", o->uv, "texture coordinates U,V of the shading point")->capture_default_str();
+  add_context_options(*cmd, o->context);
   cmd->add_flag("--json", o->json, "print {\"f\": [r, g, b], \"pdf\": p} at full float precision");
   cmd->footer(
       "Directions point away from the surface; a direction below the horizon (z <= 0) gives f = 0 and pdf = 0.");

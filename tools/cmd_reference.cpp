@@ -26,7 +26,7 @@ struct ReferenceCliOptions {
   int64_t walks = int64_t(1) << 16;
   int max_depth = 1000;
   uint64_t seed = 0;
-  std::string uv = "0,0";
+  ContextArg context;
   bool json = false;
 };
 
@@ -60,7 +60,7 @@ int run_reference(const ReferenceCliOptions& o) {
     wo = parse_direction("--wo", o.wo);
     if (!wi || !wo) return kExitInvalid;
   }
-  const std::optional<ShadingContext> ctx = parse_uv_context(o.uv);
+  const std::optional<ShadingContext> ctx = parse_context(o.context);
   if (!ctx) return kExitInvalid;
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
@@ -103,7 +103,7 @@ void add_reference(CLI::App& app, Runner& runner) {
   cmd->add_option("--max-depth", o->max_depth, "scattering events after which a walk is cut off")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "mixed into the seed hashed from the directions")->capture_default_str();
-  cmd->add_option("--uv", o->uv, "texture coordinates U,V of the shading point")->capture_default_str();
+  add_context_options(*cmd, o->context);
   cmd->add_flag("--json", o->json, "print the estimate, its standard error and the truncation as JSON");
   cmd->footer(
       "Follows light through the stack's boundaries (rough dielectric reflection and transmission both ways, "

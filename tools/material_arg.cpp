@@ -164,11 +164,32 @@ std::optional<glm::vec3> parse_direction(std::string_view option, std::string_vi
   return glm::normalize(v);
 }
 
-std::optional<ShadingContext> parse_uv_context(std::string_view text) {
-  auto uv = parse_numbers("--uv", text, 2);
+void add_context_options(CLI::App& cmd, ContextArg& arg) {
+  cmd.add_option("--uv", arg.uv, "texture coordinates U,V of the shading point")->capture_default_str();
+  cmd.add_option("--position", arg.position,
+                 "world-space position X,Y,Z of the shading point (procedural textures with \"space\": "
+                 "\"position\")")
+      ->capture_default_str();
+  cmd.add_option("--footprint", arg.footprint,
+                 "the pixel's footprint in uv units, which procedural textures filter over (0: a point sample)")
+      ->capture_default_str();
+}
+
+std::optional<ShadingContext> parse_context(const ContextArg& arg) {
+  auto uv = parse_numbers("--uv", arg.uv, 2);
   if (!uv) return std::nullopt;
+  auto position = parse_numbers("--position", arg.position, 3);
+  if (!position) return std::nullopt;
+  if (!(arg.footprint >= 0.0 && arg.footprint <= 1.0e6)) {
+    std::ostringstream text;
+    text << "--footprint: " << arg.footprint << " is outside [0, 1e6] (the pixel's size in uv units; 0 is a point)";
+    print_problem(text.str());
+    return std::nullopt;
+  }
   ShadingContext ctx;
   ctx.uv = glm::vec2((*uv)[0], (*uv)[1]);
+  ctx.position = glm::vec3((*position)[0], (*position)[1], (*position)[2]);
+  ctx.footprint = static_cast<float>(arg.footprint);
   return ctx;
 }
 

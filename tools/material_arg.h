@@ -46,9 +46,19 @@ std::optional<std::vector<float>> parse_numbers(std::string_view option, std::st
 // A direction from "X,Y,Z", normalised; a zero vector is a mistake (printed, nothing returned).
 std::optional<glm::vec3> parse_direction(std::string_view option, std::string_view text);
 
-// The default shading context at the texture coordinates "U,V" of --uv; on a mistake prints it and
-// returns nothing.
-std::optional<ShadingContext> parse_uv_context(std::string_view text);
+// The shading point of --uv, --position and --footprint (textures read it; an untextured material
+// is the same everywhere). The defaults: uv (0, 0), position (0, 0, 0), a point sample.
+struct ContextArg {
+  std::string uv = "0,0";
+  std::string position = "0,0,0";
+  double footprint = 0.0;
+};
+
+// Adds --uv, --position and --footprint to a command that evaluates at one shading point.
+void add_context_options(CLI::App& cmd, ContextArg& arg);
+
+// The shading context of those options; on a mistake prints it and returns nothing.
+std::optional<ShadingContext> parse_context(const ContextArg& arg);
 
 // The view direction theta degrees off the normal, (sin theta, 0, cos theta), for --theta in
 // [0, 90); otherwise prints the mistake and returns nothing.

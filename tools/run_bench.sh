@@ -33,6 +33,13 @@ for (const [label, prefix] of rows) {
     console.log(`  ${label.padEnd(11)} ${name.padEnd(22)} ${(t / faithful).toFixed(2)}x, ${(t / base).toFixed(2)}x   (${t.toFixed(1)} ns vs ${faithful.toFixed(1)} ns and ${base.toFixed(1)} ns per evaluation)`);
   }
 }
+console.log("Textured evaluation, ratio to the same stack untextured and to it under a checker, which resolves the stack at every point with the cheapest texture (same run, a new uv per evaluation):");
+const flat = ns["BM_eval_textured_untextured_stack"], checker = ns["BM_eval_textured_checker"];
+for (const name of ["checker", "noise_4_octaves", "voronoi", "glitter_select_of_4"]) {
+  const t = ns["BM_eval_textured_" + name];
+  if (!(t > 0)) throw new Error(`CPU benchmark BM_eval_textured_${name} did not run`);
+  console.log(`  eval        ${name.padEnd(22)} ${(t / flat).toFixed(2)}x, ${(t / checker).toFixed(2)}x   (${t.toFixed(1)} ns vs ${flat.toFixed(1)} ns and ${checker.toFixed(1)} ns per evaluation)`);
+}
 const gpu = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
 const ms = {};
 for (const b of gpu.benchmarks) ms[b.name.split("/")[1]] = b.real_time;

@@ -67,8 +67,13 @@ std::vector<vec3> render_preview(const Evaluator& evaluator, int width, int heig
           continue;
         }
         vec3 n = k::lamina_preview_normal(q);
-        ShadingContext ctx;  // uv alone: directions are given in the local frame
-        ctx.uv = k::lamina_preview_uv(n);
+        // uv, position and footprint: directions are given in the local frame, so the frame stays
+        // the default.
+        const k::LaminaContext point = k::lamina_preview_context(q, viewport);
+        ShadingContext ctx;
+        ctx.uv = point.uv;
+        ctx.position = point.position;
+        ctx.footprint = point.footprint;
         vec3 wo = k::lamina_preview_local(k::LAMINA_PREVIEW_VIEW, n);
         vec3 wi = k::lamina_preview_local(k::LAMINA_PREVIEW_LIGHT, n);
         vec3 radiance(0.0f);

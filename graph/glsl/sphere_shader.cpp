@@ -34,7 +34,9 @@ void main() {
       continue;
     }
     vec3 n = lamina_preview_normal(q);
-    LaminaPoint point = NAME_point(lamina_preview_uv(n));  // resolved once for the light and the sky
+    // resolved once for the light and the sky
+    LaminaContext ctx = lamina_preview_context(q, lamina_viewport);
+    LaminaPoint point = NAME_point(ctx);
     vec3 wo = lamina_preview_local(LAMINA_PREVIEW_VIEW, n);
     vec3 wi = lamina_preview_local(LAMINA_PREVIEW_LIGHT, n);
     vec3 radiance = vec3(0.0f);

@@ -61,6 +61,7 @@ inline float lamina_albedo_texel(int x, int y) {
 #include "nodes/kernels/boundary.glsl"
 #include "nodes/kernels/microsurface.glsl"
 #include "nodes/kernels/texture.glsl"
+#include "nodes/kernels/procedural.glsl"
 #include "nodes/kernels/preview.glsl"
 #include "nodes/kernels/stack.glsl"
 // clang-format on

@@ -61,6 +61,25 @@ LAMINA_FN vec2 lamina_preview_uv(vec3 n) {
   return vec2(atan(n.x, n.z) / (2.0f * LAMINA_PI) + 0.5f, acos(clamp(n.y, -1.0f, 1.0f)) / LAMINA_PI);
 }
 
+// The shading context of the sphere's point over q (the viewport's size in pixels as in
+// lamina_preview_disk): uv as lamina_preview_uv, the position the sphere's point itself (so that
+// textures over position show), and the footprint the uv span of one subsample, from the uv one
+// subsample across and one up, the finite differences dFdx and dFdy would take on the GPU, here the
+// same on the CPU; u's differences are taken across its seam. The subsamples resolve the rest of
+// the pixel.
+LAMINA_FN LaminaContext lamina_preview_context(vec2 q, vec2 viewport) {
+  vec3 n = lamina_preview_normal(q);
+  LaminaContext ctx = lamina_context(lamina_preview_uv(n));
+  float step = 2.0f / (min(viewport.x, viewport.y) * float(LAMINA_PREVIEW_SUBSAMPLES));
+  vec2 across = lamina_preview_uv(lamina_preview_normal(q + vec2(step, 0.0f))) - ctx.uv;
+  vec2 up = lamina_preview_uv(lamina_preview_normal(q + vec2(0.0f, step))) - ctx.uv;
+  across.x -= floor(across.x + 0.5f);
+  up.x -= floor(up.x + 0.5f);
+  ctx.position = n;
+  ctx.footprint = max(length(across), length(up));
+  return ctx;
+}
+
 // A world direction w in the shading frame at normal n: z along n, x along the tangent, which
 // follows the lines of latitude (the direction u grows in; x at the poles), y = z cross x.
 LAMINA_FN vec3 lamina_preview_local(vec3 w, vec3 n) {

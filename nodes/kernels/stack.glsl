@@ -170,6 +170,12 @@ const int LAMINA_LAYER = 0;      // an interface over a medium over the entry `f
 const int LAMINA_MIX = 1;        // (1 - weight) first + weight second
 const int LAMINA_SUBSTRATE = 2;  // an opaque base
 
+// A mix's model: where its weight comes from.
+const int LAMINA_MIX_LINEAR = 0;  // the weight input, scalars.x
+// One step of a select's chain (nodes/select.cpp): 1 where the index scalars.x reaches the
+// threshold scalars.y, else 0, so that the chain shows exactly one of its stacks.
+const int LAMINA_MIX_SELECT = 1;
+
 // A layer's interface model.
 const int LAMINA_INTERFACE_DIELECTRIC = 0;  // lamina_interface_eval
 
@@ -987,7 +993,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
         p.thickness = inputs[i].scalars.z;
       }
     } else if (kind == LAMINA_MIX) {
-      p.weight = inputs[i].scalars.x;
+      bool chained = entries[i].model == LAMINA_MIX_SELECT;
+      p.weight = chained ? (inputs[i].scalars.x >= inputs[i].scalars.y ? 1.0f : 0.0f) : inputs[i].scalars.x;
     } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one);
       // n stays above 0.001, where the Fresnel equations stay finite.

@@ -19,6 +19,45 @@ constexpr size_t kQueries = 4096;
 const char* kSingleLobe = R"({"format": 1, "materials": [{"name": "single_lobe", "surface": "@metal", "nodes": [
     {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0}]}]})";
 
+// The textured benchmarks: the Car Paint's stack (varnish over absorbing lacquer over aluminium),
+// untextured, then with its lacquer's thickness driven by a checker (the cost of resolving the
+// stack at every shading point, with the cheapest texture), a 4-octave fBm noise or Voronoi
+// cells, and as a glitter-like select of 4 stacks by Voronoi cell (the car paint and three silver
+// flakes of different slopes under the same varnish). Each is evaluated at a different uv per
+// query, so that the texture operations run at every call.
+const char* kTexturedStack = R"({"format": 1, "materials": [{"name": "NAME", "surface": "SURFACE", "nodes": [
+    {"id": "tiles", "type": "texture/checker"},
+    {"id": "grain", "type": "texture/noise", "scale": 8.0, "octaves": 4},
+    {"id": "cells", "type": "texture/voronoi", "scale": 40.0, "tilt_deg": 3.0},
+    {"id": "depth", "type": "math/remap", "value": "@SOURCE", "out_min": 1.0, "out_max": 2.0},
+    {"id": "cell_index", "type": "math/remap", "value": "@cells.value", "out_max": 4.0},
+    {"id": "pick", "type": "select", "index": "@cell_index", "stack_0": "@paint", "stack_1": "@flake_a",
+     "stack_2": "@flake_b", "stack_3": "@flake_c"},
+    {"id": "paint", "type": "layer", "interface": "@varnish", "medium": "@lacquer", "base": "@aluminium"},
+    {"id": "flake_a", "type": "layer", "interface": "@varnish", "base": "@silver_a"},
+    {"id": "flake_b", "type": "layer", "interface": "@varnish", "base": "@silver_b"},
+    {"id": "flake_c", "type": "layer", "interface": "@varnish", "base": "@silver_c"},
+    {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 1.0},
+    {"id": "lacquer", "type": "medium/absorbing", "thickness": THICKNESS, "absorption": [0.98, 0.4, 0.28]},
+    {"id": "aluminium", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0},
+    {"id": "silver_a", "type": "substrate/conductor", "metal": "silver", "roughness_deg": 1.0},
+    {"id": "silver_b", "type": "substrate/conductor", "metal": "silver", "roughness_deg": 3.0},
+    {"id": "silver_c", "type": "substrate/conductor", "metal": "silver", "roughness_deg": 5.0}]}]})";
+
+std::string replace(std::string text, const std::string& what, const std::string& with) {
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + with.size()))
+    text.replace(at, what.size(), with);
+  return text;
+}
+
+lamina::cpu::Evaluator textured(const char* name, const char* surface, const char* source, const char* thickness) {
+  std::string text =
+      replace(replace(replace(replace(kTexturedStack, "NAME", name), "SURFACE", surface), "SOURCE", source),
+              "THICKNESS", thickness);
+  auto checked = lamina::check_text(text, "bench.json");
+  return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], "bench.json"));
+}
+
 lamina::cpu::Evaluator evaluator_from_text(const char* text) {
   auto checked = lamina::check_text(text, "bench.json");
   return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], "bench.json"));
@@ -70,6 +109,19 @@ void eval_pdf_batched(benchmark::State& state, const lamina::cpu::Evaluator& e) 
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * int64_t(kQueries));
+}
+
+// As eval_scalar, at a different uv per query (the u of the query's random numbers).
+void eval_textured(benchmark::State& state, const lamina::cpu::Evaluator& e) {
+  const Queries& q = queries();
+  lamina::ShadingContext ctx;
+  size_t i = 0;
+  for (auto _ : state) {
+    ctx.uv = q.u[i];
+    benchmark::DoNotOptimize(e.eval(ctx, q.wi[i], q.wo[i]));
+    i = (i + 1) % kQueries;
+  }
+  state.SetItemsProcessed(state.iterations());
 }
 
 void sample_scalar(benchmark::State& state, const lamina::cpu::Evaluator& e) {
@@ -131,8 +183,41 @@ void BM_eval_pdf_batch_house_paint_3_layers_conserving(benchmark::State& s) {
 void BM_sample_car_paint_2_layers_conserving(benchmark::State& s) { sample_scalar(s, car_paint_conserving()); }
 void BM_sample_house_paint_3_layers_conserving(benchmark::State& s) { sample_scalar(s, house_paint_conserving()); }
 
+// Unused nodes are fine here: the checker warns, and compiling skips them.
+const lamina::cpu::Evaluator& untextured() {
+  static const auto e = textured("untextured", "@paint", "grain", "1.5");
+  return e;
+}
+const lamina::cpu::Evaluator& checker_textured() {
+  static const auto e = textured("checker", "@paint", "tiles.value", "\"@depth\"");
+  return e;
+}
+const lamina::cpu::Evaluator& noise_textured() {
+  static const auto e = textured("noise", "@paint", "grain", "\"@depth\"");
+  return e;
+}
+const lamina::cpu::Evaluator& voronoi_textured() {
+  static const auto e = textured("voronoi", "@paint", "cells", "\"@depth\"");
+  return e;
+}
+const lamina::cpu::Evaluator& glitter_select() {
+  static const auto e = textured("glitter", "@pick", "grain", "1.5");
+  return e;
+}
+
+void BM_eval_textured_untextured_stack(benchmark::State& s) { eval_textured(s, untextured()); }
+void BM_eval_textured_checker(benchmark::State& s) { eval_textured(s, checker_textured()); }
+void BM_eval_textured_noise_4_octaves(benchmark::State& s) { eval_textured(s, noise_textured()); }
+void BM_eval_textured_voronoi(benchmark::State& s) { eval_textured(s, voronoi_textured()); }
+void BM_eval_textured_glitter_select_of_4(benchmark::State& s) { eval_textured(s, glitter_select()); }
+
 }  // namespace
 
+BENCHMARK(BM_eval_textured_untextured_stack);
+BENCHMARK(BM_eval_textured_checker);
+BENCHMARK(BM_eval_textured_noise_4_octaves);
+BENCHMARK(BM_eval_textured_voronoi);
+BENCHMARK(BM_eval_textured_glitter_select_of_4);
 BENCHMARK(BM_eval_single_lobe);
 BENCHMARK(BM_eval_car_paint_2_layers);
 BENCHMARK(BM_eval_house_paint_3_layers);

@@ -7,7 +7,7 @@
 //                      [--random N [--seed S]] [FILE...]
 //
 // --entries: the shader calls eval, pdf and sample with a LaminaPoint resolved once per query
-// (point, the default: how a renderer calls them) or with the texture coordinate (uv: each call
+// (point, the default: how a renderer calls them) or with the shading context (uv: each call
 // resolves the point again, through the entry points at a context and at a point).
 //
 // --random N adds N random valid materials (tests/random_stacks.h, seed S, default 1): nested
@@ -109,9 +109,20 @@ std::vector<Query> make_queries() {
   return q;
 }
 
+// A query's shading context: its uv, and a world-space position that moves with it, so that
+// textures over position (procedural noise, Voronoi cells, marble in 3D) vary across the queries
+// as those over uv do. The harness computes the same position in GLSL (lamina_q_context).
+ShadingContext query_context(vec2 uv) {
+  ShadingContext ctx;
+  ctx.uv = uv;
+  ctx.position = vec3(3.25f * uv.x - 0.5f, 2.5f * uv.y + 0.25f, 0.75f * (uv.x - uv.y));
+  return ctx;
+}
+
 // WHERE is the shading point's argument of the three functions: `point`, resolved once (the
-// default, as a renderer calls them), or `c.xy`, the texture coordinate, for the entry points that
-// resolve at every call (each through the next: uv, context, point).
+// default, as a renderer calls them), or `ctx`, the shading context, for the entry points that
+// resolve at every call (each through the next: context, point; the uv entry points are the
+// context ones at lamina_context(uv)).
 const char* kHarness = R"(
 // ---- parity harness: one query per fragment
 uniform sampler2D lamina_q_wi;
@@ -120,12 +131,18 @@ uniform sampler2D lamina_q_u;
 layout(location = 0) out vec4 o_eval;
 layout(location = 1) out vec4 o_sample;
 layout(location = 2) out vec4 o_sample_f;
+LaminaContext lamina_q_context(vec2 uv) {
+  LaminaContext ctx = lamina_context(uv);
+  ctx.position = vec3(3.25f * uv.x - 0.5f, 2.5f * uv.y + 0.25f, 0.75f * (uv.x - uv.y));
+  return ctx;
+}
 void main() {
   ivec2 at = ivec2(gl_FragCoord.xy);
   vec4 a = texelFetch(lamina_q_wi, at, 0);
   vec4 b = texelFetch(lamina_q_wo, at, 0);
   vec4 c = texelFetch(lamina_q_u, at, 0);
-  LaminaPoint point = NAME_point(c.xy);
+  LaminaContext ctx = lamina_q_context(c.xy);
+  LaminaPoint point = NAME_point(ctx);
   o_eval = vec4(NAME_eval(a.xyz, b.xyz, WHERE), NAME_pdf(a.xyz, b.xyz, WHERE));
   vec3 wi;
   float pdf;
@@ -136,7 +153,7 @@ void main() {
 )";
 
 std::string harness(const std::string& prefix, bool per_call) {
-  return glsl::replace_all(glsl::replace_all(kHarness, "WHERE", per_call ? "c.xy" : "point"), "NAME", prefix);
+  return glsl::replace_all(glsl::replace_all(kHarness, "WHERE", per_call ? "ctx" : "point"), "NAME", prefix);
 }
 
 // |gpu - cpu| / max(1e-3 |cpu|, 1e-5): the error as a fraction of the eval and pdf tolerance,
@@ -298,8 +315,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
   Checks checks;
   for (size_t i = 0; i < queries.size(); ++i) {
     const Query& q = queries[i];
-    ShadingContext ctx;
-    ctx.uv = q.uv;
+    const ShadingContext ctx = query_context(q.uv);
     bool widened = false;
     // The plain tolerance first; the CPU's spread only where that fails (see the top of the file).
     vec4 e = eval_fractions(out[0][i], ref_eval[i]);
@@ -369,8 +385,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
       size_t q = checks.sample_pdf.query;
       describe("sample pdf", q);
       const vec4 g = out[1][q];
-      ShadingContext ctx;
-      ctx.uv = queries[q].uv;
+      const ShadingContext ctx = query_context(queries[q].uv);
       std::printf("    GPU drew wi (%.9g, %.9g, %.9g) with pdf %.7g, CPU pdf there %.7g\n", double(g.x), double(g.y),
                   double(g.z), double(g.w), double(cpu_eval.eval_pdf(ctx, vec3(g), queries[q].wo).pdf));
     }
@@ -378,8 +393,7 @@ std::optional<Checks> run_material(gltest::Runner& runner, const Program& progra
       size_t q = checks.sample_f.query;
       describe("sample f", q);
       const vec4 g = out[1][q], gf = out[2][q];
-      ShadingContext ctx;
-      ctx.uv = queries[q].uv;
+      const ShadingContext ctx = query_context(queries[q].uv);
       cpu::EvalPdf at = cpu_eval.eval_pdf(ctx, vec3(g), queries[q].wo);
       std::printf("    GPU drew wi (%.9g, %.9g, %.9g) with f (%.7g, %.7g, %.7g), CPU f there (%.7g, %.7g, %.7g)\n",
                   double(g.x), double(g.y), double(g.z), double(gf.x), double(gf.y), double(gf.z), double(at.f.x),
@@ -510,8 +524,7 @@ int run_parity(int argc, char** argv) {
     std::vector<cpu::EvalPdf> ref_eval;
     std::vector<cpu::Sample> ref_sample;
     for (const Query& q : queries) {
-      ShadingContext ctx;
-      ctx.uv = q.uv;
+      const ShadingContext ctx = query_context(q.uv);
       ref_eval.push_back(cpu_eval.eval_pdf(ctx, q.wi, q.wo));
       ref_sample.push_back(cpu_eval.sample(ctx, q.wo, q.u, q.u_layer));
     }

@@ -56,11 +56,22 @@ void main() {
   // texture
   f += checker_value(v_uv, vec2(8.0f)) + remap_value(c, 0.0f, 1.0f, -1.0f, 1.0f, true);
   s += srgb_to_linear(w) + srgb_from_linear(w);
+  // procedural
+  ivec3 cell = ivec3(0);
+  vec4 cell_random = vec4(0.0f);
+  f += lamina_hash_unit(lamina_hash3(uvec3(7u)).x) + lamina_perlin(w * 3.0f, 1u) + lamina_fbm(w, 4, 2.0f, 0.5f, 2u, true, c);
+  f += lamina_marble(c, f, 0.5f, vec2(0.1f)) + lamina_sinc(c) + lamina_voronoi(w * 5.0f, c > 0.5f, 1.0f, 3u, cell).y + float(cell.x);
+  s += lamina_tilted_normal(lamina_cell_randoms(cell, 3u, cell_random), m, 2) + cell_random.xyz;
+  LaminaVoronoi cells = lamina_voronoi_cell(w * 4.0f, true, 0.9f, 5u, 3.0f, 0, c);
+  s += cells.colour + cells.normal + vec3(cells.distances, cells.value) + lamina_space_point(v_uv, w, 1, 2.0f);
+  f += lamina_noise_value(w, 2, 2.0f, 0.5f, 1u, false, 0.0f) + lamina_patina_weight(c, 0.5f, 0.1f);
+  f += lamina_marble_value(w, 4.0f, v, 3.0f, 1.0f, 3, 2.0f, 0.5f, 9u, 0.01f) + lamina_space_footprint(c, 0);
+  s += lamina_fade(w) + lamina_lattice_point(v) + vec3(lamina_gradient_dot(lamina_hash_cell(cell, 1u).y, w));
   // preview
   vec2 q = lamina_preview_disk(lamina_preview_subsample(v_uv, 3), vec2(640.0f, 480.0f));
   vec3 pn = lamina_preview_normal(q);
   if (lamina_preview_on_sphere(q)) s += lamina_preview_background();
-  s.xy += lamina_preview_uv(pn);
+  s.xy += lamina_preview_uv(pn) + vec2(lamina_preview_context(q, vec2(640.0f, 480.0f)).footprint);
   s += lamina_preview_local(LAMINA_PREVIEW_LIGHT, pn) + lamina_preview_local(LAMINA_PREVIEW_VIEW, pn);
   s += lamina_preview_light(w, v) + lamina_preview_sky_point(LAMINA_PREVIEW_SKY_POINTS - 1);
   s += lamina_preview_sky(lamina_preview_sky_weight(w, v, c), vec3(LAMINA_PREVIEW_AMBIENT));

@@ -40,9 +40,10 @@ TEST_CASE("every declaration is complete and its defaults obey its own ranges") 
       CHECK(names.insert(p.name).second);
       CHECK_FALSE(p.doc.empty());
       CHECK((p.lo < p.hi || !p.has_range()));
-      // Whole numbers, quaternions, nested objects and text lengths are scene-file declarations:
-      // the material reader has no case for them.
-      CHECK(p.type != ValueType::Integer);
+      // Quaternions, nested objects and text lengths are scene-file declarations: the material
+      // reader has no case for them. Whole numbers (counts, seeds) are constants: a texture
+      // register holds a float, not a count.
+      if (p.type == ValueType::Integer) CHECK_FALSE(p.linkable);
       CHECK(p.type != ValueType::Quaternion);
       CHECK(p.type != ValueType::Object);
       CHECK(p.max_length == 0);
@@ -60,7 +61,8 @@ TEST_CASE("every declaration is complete and its defaults obey its own ranges") 
         for (double c : *v) CHECK(in_range(c));
       bool type_fits = false;
       switch (p.type) {
-        case ValueType::Float: type_fits = std::holds_alternative<double>(*p.fallback); break;
+        case ValueType::Float:
+        case ValueType::Integer: type_fits = std::holds_alternative<double>(*p.fallback); break;
         case ValueType::Color:
         case ValueType::Vec3: type_fits = std::holds_alternative<Vec3d>(*p.fallback); break;
         case ValueType::Vec2: type_fits = std::holds_alternative<Vec2d>(*p.fallback); break;

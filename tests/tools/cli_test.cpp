@@ -14,7 +14,12 @@ TEST_CASE("lamina validate accepts every example and exits 0") {
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("18 of 18 files valid") != std::string::npos);
+  // validate walks the folder recursively (the patina growth stages live in a subfolder).
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::source_dir() / "examples/materials"))
+    files += entry.path().extension() == ".json" ? 1 : 0;
+  const std::string count = std::to_string(files);
+  CHECK(r.out.find(count + " of " + count + " files valid") != std::string::npos);
 }
 
 TEST_CASE("lamina validate exits 2 on every broken file, prints its pointer and writes nothing") {
@@ -97,9 +102,12 @@ TEST_CASE("lamina validate checks a scene and its material files and prints a on
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find("examples/showcase.json: ok (scene: 19 objects, 18 materials, 2 lights, 1 camera)") !=
-        std::string::npos);
-  CHECK(r.out.find("1 of 1 file valid, 18 materials, 0 warnings") != std::string::npos);
+  // A sphere per example material and the floor.
+  const std::string materials = std::to_string(test::example_files().size());
+  const std::string objects = std::to_string(test::example_files().size() + 1);
+  CHECK(r.out.find("examples/showcase.json: ok (scene: " + objects + " objects, " + materials +
+                   " materials, 2 lights, 1 camera)") != std::string::npos);
+  CHECK(r.out.find("1 of 1 file valid, " + materials + " materials, 0 warnings") != std::string::npos);
 }
 
 TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {
@@ -149,4 +157,24 @@ TEST_CASE("lamina validate and classify check every argument, and an empty direc
       test::run_cli("classify " + empty.path().string() + " examples/materials/car_paint.json", test::source_dir());
   CHECK(classify.exit_code == 2);
   CHECK(classify.out.find("examples/materials/car_paint.json:\ncar_paint ") != std::string::npos);
+}
+
+TEST_CASE("lamina eval reads the shading point's uv, position and footprint, and refuses a negative footprint") {
+  // every_node.json has textures over uv and over position, and filters them over the footprint.
+  const std::string base = "eval tests/data/glsl/every_node.json --wi 0.3,0,1 --wo -0.2,0.1,1 --uv 0.3,0.4";
+  auto at_origin = test::run_cli(base, test::source_dir());
+  auto moved = test::run_cli(base + " --position 0.7,-1.3,2.1", test::source_dir());
+  auto filtered = test::run_cli(base + " --footprint 0.5", test::source_dir());
+  REQUIRE(at_origin.exit_code == 0);
+  REQUIRE(moved.exit_code == 0);
+  REQUIRE(filtered.exit_code == 0);
+  CHECK(moved.out != at_origin.out);
+  CHECK(filtered.out != at_origin.out);
+  for (const char* bad : {" --footprint -1", " --position 1,2", " --footprint nan"}) {
+    CAPTURE(bad);
+    auto r = test::run_cli(base + bad, test::source_dir());
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.empty());
+    CHECK_FALSE(r.err.empty());
+  }
 }

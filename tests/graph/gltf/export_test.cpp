@@ -225,22 +225,24 @@ TEST_CASE("glTF export: the showcase has a node per object, camera, light and la
   REQUIRE(d.ok());
   gltf::Export out = gltf::export_scene(scene, "showcase.glb", quick());
   Json j = glb_json(out.files[0].bytes);
-  // 1 camera, 2 lights, 19 objects (18 spheres and the floor), 18 labels.
-  CHECK(j["nodes"].size() == 40);
-  CHECK(j["scenes"][0]["nodes"].size() == 40);
-  CHECK(j["meshes"].size() == 37);
-  CHECK(j["materials"].size() == 36);  // 18 lamina materials, 18 label materials
-  CHECK(out.materials.size() == 18);   // the fit report: lamina materials only
+  // 1 camera, 2 lights, the objects (a labelled sphere per example material and the floor), and a
+  // label per sphere; each sphere's material is a lamina material, each label has its own.
+  const size_t objects = scene.objects.size(), spheres = objects - 1;
+  REQUIRE(spheres == test::example_files().size());
+  CHECK(j["nodes"].size() == 3 + objects + spheres);
+  CHECK(j["scenes"][0]["nodes"].size() == 3 + objects + spheres);
+  CHECK(j["meshes"].size() == objects + spheres);
+  CHECK(j["materials"].size() == 2 * spheres);
+  CHECK(out.materials.size() == spheres);  // the fit report: lamina materials only
   CHECK(j["cameras"].size() == 1);
   CHECK(j["extensions"]["KHR_lights_punctual"]["lights"].size() == 2);
   CHECK(j["nodes"][0]["name"] == "main");
   CHECK(j["nodes"][1]["name"] == "key");
   CHECK(j["nodes"][2]["name"] == "fill");
   CHECK(j["nodes"][3]["name"] == "acrylic_lacquer");
-  CHECK(j["nodes"][11]["name"] == "fabric");
-  CHECK(j["nodes"][21]["name"] == "floor");
-  CHECK(j["nodes"][22]["name"] == "acrylic_lacquer label");
-  CHECK(j["nodes"][39]["name"] == "sugar label");
+  CHECK(j["nodes"][3 + spheres]["name"] == "floor");
+  CHECK(j["nodes"][4 + spheres]["name"] == "acrylic_lacquer label");
+  CHECK(j["nodes"][3 + objects + spheres - 1]["name"] == "sugar label");
   CHECK(out.notes.empty());
 }
 
