@@ -62,8 +62,8 @@ NodeDecl declare_texture_voronoi() {
                          .range(0.0, 1.0)
                          .or_default(0.9)
                          .described("how far feature points stray from their cell's centre, as a fraction of the "
-                                    "cell: 0 a regular grid; up to 0.9 the 3x3 cells searched hold F1 and F2 "
-                                    "exactly (README, Procedural textures)"));
+                                    "cell: 0 a regular grid; up to 0.75 the 3x3 cells searched hold F1 and F2 "
+                                    "exactly, beyond it F2 rarely (README, Textures)"));
   d.params.push_back(param("tilt_deg", ValueType::Float)
                          .range(0.0, 60.0)
                          .in_unit("degrees")

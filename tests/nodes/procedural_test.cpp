@@ -142,11 +142,11 @@ TEST_CASE("marble is Perlin's sin of a stripe coordinate displaced by turbulence
         doctest::Approx(moved).epsilon(1e-5));
 }
 
-TEST_CASE("Voronoi's 3x3 search finds the nearest and second nearest feature points up to jitter 0.85") {
+TEST_CASE("Voronoi's 3x3 search finds the nearest and second nearest feature points up to jitter 0.75") {
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> coordinate(-100.0f, 100.0f);
   for (bool three_d : {false, true})
-    for (float jitter : {0.0f, 0.5f, 0.85f}) {
+    for (float jitter : {0.0f, 0.5f, 0.75f}) {
       CAPTURE(three_d);
       CAPTURE(jitter);
       int wrong = 0;
