@@ -8,6 +8,7 @@
 
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
+#include "graph/glsl/glsl_text.h"
 #include "graph/load.h"
 #include "queries.h"
 
@@ -44,16 +45,11 @@ const char* kTexturedStack = R"({"format": 1, "materials": [{"name": "NAME", "su
     {"id": "silver_b", "type": "substrate/conductor", "metal": "silver", "roughness_deg": 3.0},
     {"id": "silver_c", "type": "substrate/conductor", "metal": "silver", "roughness_deg": 5.0}]}]})";
 
-std::string replace(std::string text, const std::string& what, const std::string& with) {
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + with.size()))
-    text.replace(at, what.size(), with);
-  return text;
-}
-
 lamina::cpu::Evaluator textured(const char* name, const char* surface, const char* source, const char* thickness) {
-  std::string text =
-      replace(replace(replace(replace(kTexturedStack, "NAME", name), "SURFACE", surface), "SOURCE", source),
-              "THICKNESS", thickness);
+  using lamina::glsl::replace_all;
+  const std::string text = replace_all(
+      replace_all(replace_all(replace_all(kTexturedStack, "NAME", name), "SURFACE", surface), "SOURCE", source),
+      "THICKNESS", thickness);
   auto checked = lamina::check_text(text, "bench.json");
   return lamina::cpu::Evaluator(lamina::compile(*checked.graphs[0], "bench.json"));
 }
