@@ -1,6 +1,7 @@
 // interface/dielectric: a rough or smooth boundary into a transparent layer (course sec. 2.1).
 #include "nodes/kernels/kernels.h"
 #include "nodes/microfacet_params.h"
+#include "nodes/normal_param.h"
 
 namespace lamina {
 
@@ -11,6 +12,7 @@ static void lower_dielectric(NodeLowering& n) {
   e.interface_node = n.id();
   e.scalar_x = n.input("ior");
   lower_microfacet_params(n);
+  lower_normal_param(n);
 }
 
 NodeDecl declare_interface_dielectric() {
@@ -23,6 +25,7 @@ NodeDecl declare_interface_dielectric() {
                          .links()
                          .described("absolute index of refraction of the layer below the boundary"));
   add_microfacet_params(d);
+  add_normal_param(d);
   d.outputs.push_back({"interface", ValueType::Interface, "the boundary, for a layer's interface input"});
   d.lower = lower_dielectric;
   return d;

@@ -5,6 +5,7 @@
 #include "nodes/kernels/kernels.h"
 #include "nodes/metals.h"
 #include "nodes/microfacet_params.h"
+#include "nodes/normal_param.h"
 
 namespace lamina {
 
@@ -41,6 +42,7 @@ static void lower_conductor(NodeLowering& n) {
     e.colour1 = n.input("k");
   }
   lower_microfacet_params(n);
+  lower_normal_param(n);
 }
 
 NodeDecl declare_substrate_conductor() {
@@ -62,6 +64,7 @@ NodeDecl declare_substrate_conductor() {
                          .described("extinction coefficient (imaginary part of the index) per channel"));
   add_microfacet_params(d);
   d.alternatives.push_back({{{"metal"}, {"n", "k"}}, false});
+  add_normal_param(d);
   d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
   d.lower = lower_conductor;
   d.metal = true;

@@ -4,6 +4,7 @@
 #include "graph/lowering.h"
 #include "graph/node_decl.h"
 #include "nodes/kernels/kernels.h"
+#include "nodes/normal_param.h"
 
 namespace lamina {
 
@@ -13,6 +14,7 @@ static void lower_oren_nayar(NodeLowering& n) {
   e.model = kernels::LAMINA_SUBSTRATE_OREN_NAYAR;
   e.colour0 = n.input("albedo");
   e.scalar_x = n.input("sigma");
+  lower_normal_param(n);
 }
 
 NodeDecl declare_substrate_oren_nayar() {
@@ -30,6 +32,7 @@ NodeDecl declare_substrate_oren_nayar() {
                          .or_default(0.0)
                          .links()
                          .described("standard deviation of the facet slope angle, as in the course's shader"));
+  add_normal_param(d);
   d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
   d.lower = lower_oren_nayar;
   return d;

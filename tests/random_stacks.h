@@ -10,6 +10,7 @@
 // compiler chooses, so one expression with two draws would give GCC and clang different stacks.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <sstream>
@@ -89,7 +90,8 @@ class RandomStacks {
     const std::string id = fresh("iface");
     const std::string ior = scalar(1.0, 2.4);
     const std::string slope = roughness();
-    node(id, R"("type": "interface/dielectric", "ior": )" + ior + ", " + slope + microfacet());
+    const std::string tilt = normal();
+    node(id, R"("type": "interface/dielectric", "ior": )" + ior + ", " + slope + microfacet() + tilt);
     return id;
   }
 
@@ -109,24 +111,45 @@ class RandomStacks {
 
   std::string substrate() {
     const std::string id = fresh("base");
+    const std::string tilt = normal();
     const double u = uniform(0.0, 1.0);
     if (u < 0.3) {
-      node(id, R"("type": "substrate/lambert", "albedo": )" + albedo());
+      node(id, R"("type": "substrate/lambert", "albedo": )" + albedo() + tilt);
     } else if (u < 0.55) {
       const std::string a = albedo();
-      node(id, R"("type": "substrate/oren_nayar", "albedo": )" + a + R"(, "sigma": )" + scalar(0.0, 1.2));
+      node(id, R"("type": "substrate/oren_nayar", "albedo": )" + a + R"(, "sigma": )" + scalar(0.0, 1.2) + tilt);
     } else if (u < 0.75) {
       static const char* metals[] = {"aluminium", "chromium", "copper", "gold", "silver"};
       const std::string metal = metals[pick(5)];
       const std::string slope = roughness();
-      node(id, R"("type": "substrate/conductor", "metal": ")" + metal + "\", " + slope + microfacet());
+      node(id, R"("type": "substrate/conductor", "metal": ")" + metal + "\", " + slope + microfacet() + tilt);
     } else {
       const std::string n = colour(0.1, 3.0);
       const std::string k = colour(0.0, 8.0);
       const std::string slope = roughness();
-      node(id, R"("type": "substrate/conductor", "n": )" + n + R"(, "k": )" + k + ", " + slope + microfacet());
+      node(id, R"("type": "substrate/conductor", "n": )" + n + R"(, "k": )" + k + ", " + slope + microfacet() + tilt);
     }
     return id;
+  }
+
+  // One interface or substrate in four is tilted (from the second stream): by a constant normal up
+  // to 40 degrees from +z, or by Voronoi cells' normals (glitter facets, flakes). "" otherwise.
+  std::string normal() {
+    if (!kind_chance(0.25)) return "";
+    if (kind_chance(0.5)) {
+      const double theta = kind_uniform(0.0, 40.0) * 3.14159265358979 / 180.0;
+      const double phi = kind_uniform(0.0, 2.0 * 3.14159265358979);
+      return R"(, "normal": [)" + number(std::sin(theta) * std::cos(phi)) + ", " +
+             number(std::sin(theta) * std::sin(phi)) + ", " + number(std::cos(theta)) + "]";
+    }
+    const std::string id = fresh("facets");
+    const std::string where = space();
+    const std::string scale = number(kind_uniform(2.0, 20.0));
+    const std::string tilt = number(kind_uniform(0.0, 30.0));
+    const std::string seed = std::to_string(kind_pick(1000));
+    node(id, R"("type": "texture/voronoi", )" + where + R"(, "scale": )" + scale + R"(, "tilt_deg": )" + tilt +
+                 R"(, "seed": )" + seed);
+    return R"(, "normal": "@)" + id + R"(.normal")";
   }
 
   // Roughness in either form, sometimes from a texture.

@@ -100,6 +100,7 @@ int run_compare(const CompareCliOptions& o) {
   if (!o.plot.empty())
     if (int code = check_outputs({figure.path}); code != kExitOk) return code;  // before the walks
   const cpu::ShadingPoint point = evaluator->bind(*ctx);
+  if (int code = refuse_tilted(o.material, *evaluator, point); code != kExitOk) return code;
   const cpu::Comparison c = cpu::compare_to_reference(point, {o.albedo_walks, o.slice_walks, o.seed});
   if (!o.plot.empty()) {
     OIIO::ImageBuf image = figure_image(figure);

@@ -65,6 +65,7 @@ int run_reference(const ReferenceCliOptions& o) {
   std::optional<cpu::Evaluator> evaluator;
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
   const cpu::ShadingPoint point = evaluator->bind(*ctx);
+  if (int code = refuse_tilted(o.material, *evaluator, point); code != kExitOk) return code;
   const cpu::ReferenceOptions options{o.walks, o.max_depth, o.seed};
   const cpu::ReferenceEstimate r =
       o.albedo ? cpu::reference_albedo(point, *wo, options) : cpu::reference_eval(point, *wi, *wo, options);

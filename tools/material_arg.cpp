@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "graph/compile.h"
+#include "graph/cpu/reference.h"
 #include "graph/load.h"
 #include "graph/model.h"
 #include "tools/commands.h"
@@ -202,6 +203,17 @@ std::optional<glm::vec3> parse_view_angle(double theta_deg) {
     return std::nullopt;
   }
   return direction_in_plane(theta_deg);
+}
+
+int refuse_tilted(const MaterialArg& arg, const cpu::Evaluator& evaluator, const cpu::ShadingPoint& point) {
+  const int i = cpu::tilted_entry(point);
+  if (i < 0) return kExitOk;
+  const StackEntry& e = evaluator.program().stack[size_t(i)];
+  const std::string& node = e.interface_node.empty() ? e.node : e.interface_node;
+  std::cerr << "lamina: " << arg.file << ": material \"" << evaluator.program().name << "\": node \"" << node
+            << "\" is tilted by its normal input at this shading point; the reference solver walks flat, parallel "
+               "boundaries only (README, Per-layer normals)\n";
+  return kExitInvalid;
 }
 
 }  // namespace lamina::cli

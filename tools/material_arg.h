@@ -64,4 +64,9 @@ std::optional<ShadingContext> parse_context(const ContextArg& arg);
 // [0, 90); otherwise prints the mistake and returns nothing.
 std::optional<glm::vec3> parse_view_angle(double theta_deg);
 
+// For the commands that run the reference solver (reference, compare): kExitOk when the bound
+// point's stack has no tilted entry, else prints which node's normal input tilts it (the solver
+// walks flat boundaries only, graph/cpu/reference.h) and returns kExitInvalid.
+int refuse_tilted(const MaterialArg& arg, const cpu::Evaluator& evaluator, const cpu::ShadingPoint& point);
+
 }  // namespace lamina::cli

@@ -66,7 +66,8 @@ class ShadingPoint {
   // quadrature: each lobe's sampler and a cosine-weighted one driven by Hammersley point sets,
   // combined as their mixture.
   glm::vec3 albedo(glm::vec3 wo, int points_per_lobe = 1024) const;
-  // The lobe selection probabilities at wo (they sum to 1; all 0 when wo is below the horizon).
+  // The lobe selection probabilities at wo (they sum to 1; all 0 when wo reaches no lobe: below the
+  // horizon, or behind the horizon of every tilted entry it meets).
   std::vector<float> lobe_weights(glm::vec3 wo) const;
   LobeFlags lobe_flags(size_t lobe) const;
 

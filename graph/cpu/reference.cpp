@@ -7,6 +7,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 namespace lamina::cpu {
 
@@ -354,7 +355,20 @@ ReferenceEstimate run(const ShadingPoint& point, uint64_t seed, const ReferenceO
 
 }  // namespace
 
+int tilted_entry(const ShadingPoint& point) {
+  const ShadingPoint::Stack stack = point.stack();
+  for (int i = 0; i < stack.count; ++i)
+    if (stack.params[i].normal != vec3(0.0f, 0.0f, 1.0f)) return i;
+  return -1;
+}
+
+static void refuse_tilted(const ShadingPoint& point) {
+  if (tilted_entry(point) >= 0)
+    throw std::domain_error("the reference solver walks flat boundaries; this point's stack has a tilted entry");
+}
+
 ReferenceEstimate reference_eval(const ShadingPoint& point, vec3 wi, vec3 wo, const ReferenceOptions& options) {
+  refuse_tilted(point);
   wi = point.local(wi);
   wo = point.local(wo);
   if (!(wi.z > 0.0f && wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
@@ -363,6 +377,7 @@ ReferenceEstimate reference_eval(const ShadingPoint& point, vec3 wi, vec3 wo, co
 }
 
 ReferenceEstimate reference_albedo(const ShadingPoint& point, vec3 wo, const ReferenceOptions& options) {
+  refuse_tilted(point);
   wo = point.local(wo);
   if (!(wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
   const uint64_t seed = hash_directions(vec3(0.0f), wo, options.seed ^ 0xa1bed0ull);

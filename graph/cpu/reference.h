@@ -39,6 +39,11 @@ struct ReferenceEstimate {
   int64_t truncated_walks = 0;
 };
 
+// The first entry of the point's stack whose frame a normal input tilts, or -1. The slab model has
+// flat, parallel boundaries only, so reference_eval and reference_albedo refuse a tilted point
+// (std::domain_error); `lamina reference` and `lamina compare` name the node first.
+int tilted_entry(const ShadingPoint& point);
+
 // f(wi, wo) at the bound point, directions as ShadingPoint::eval takes them (0 below the horizon).
 ReferenceEstimate reference_eval(const ShadingPoint& point, glm::vec3 wi, glm::vec3 wo,
                                  const ReferenceOptions& options = {});

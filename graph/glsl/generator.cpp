@@ -240,6 +240,8 @@ class MaterialEmitter final : public OpWriter {
           << at << "n = " << vec3_literal(q.n) << ";\n"
           << at << "k = " << vec3_literal(q.k) << ";\n"
           << at << "normal = " << vec3_literal(q.normal) << ";\n"
+          << at << "frame_x = " << vec3_literal(q.frame_x) << ";\n"
+          << at << "frame_y = " << vec3_literal(q.frame_y) << ";\n"
           << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
           << at << "forward = " << vec3_literal(q.forward) << ";\n"
           << at << "grid = " << vec2_literal(q.grid) << ";\n"

@@ -183,6 +183,19 @@ LAMINA_FN vec2 lamina_cell_randoms(ivec3 cell, uint seed, LAMINA_OUT(vec4) rando
   return vec2(lamina_hash_unit(b.y), lamina_hash_unit(b.z));
 }
 
+// Elek's metal flakes (Elek 2010, sec. 4.1): a flake map of one random colour c per cell of the
+// unit grid at p (its scale tiles it: about 1000 times over uv in Elek's paint), read without
+// filtering, so that each shading point sees the one flake it hits; the flake's normal
+//   N = normalize(max(d, 1) (0, 0, 1) + (2 c - 1)),
+// d the distance to the viewer, fades towards +z as the paint recedes and its flakes blur together.
+LAMINA_FN vec3 lamina_flake_normal(vec3 p, uint seed, float view_distance) {
+  uvec3 h = lamina_hash_cell(ivec3(floor(lamina_lattice_point(p))), seed);
+  vec3 c = vec3(lamina_hash_unit(h.x), lamina_hash_unit(h.y), lamina_hash_unit(h.z));
+  // d at least 1 (Elek's max), at most 1e6, and 1 when it is not a number.
+  float d = view_distance > 1.0f ? min(view_distance, 1.0e6f) : 1.0f;
+  return normalize(d * vec3(0.0f, 0.0f, 1.0f) + (2.0f * c - vec3(1.0f)));
+}
+
 // A unit normal tilted from +z with the slope distribution of a microfacet model of slope m
 // (tan of the roughness angle), from two uniforms u in [0, 1): the inversion of the distribution's
 // slope CDF of Walter et al., "Microfacet Models for Refraction" (EGSR 2007), eq. 28 for Beckmann,

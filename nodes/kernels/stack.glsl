@@ -116,18 +116,38 @@ LAMINA_FN float lamina_cos_critical(float n) { return sqrt(1.0f - 1.0f / (n * n)
 
 // Density at the outer direction wi of a microfacet lobe of wo-in-frame v, where w_below is wi
 // refracted down into the frame and jacobian = d omega_below / d omega_outside along that path.
-LAMINA_FN float lamina_microfacet_lobe_pdf(int distribution, float m, vec3 v, vec3 w_below, float jacobian, vec3 wi,
-                                           float n_frame) {
-  float density = lamina_folded_reflection_density(distribution, m, v, w_below) * jacobian;
-  if (n_frame > 1.0f) {
-    float cos_c = lamina_cos_critical(n_frame);
-    density += lamina_folded_reflection_density(distribution, m, v, lamina_with_cosine(wi, cos_c * wi.z)) * cos_c;
-  }
+// All three in the lobe's frame: w_below the outer direction refracted down (read where jacobian >
+// 0), spread the direction the lobe's spread outside the cone maps onto the outer direction
+// (lamina_spread_source; none where its z <= 0).
+LAMINA_FN float lamina_microfacet_lobe_pdf(int distribution, float m, vec3 v, vec3 w_below, float jacobian,
+                                           vec3 spread, float n_frame) {
+  float density = 0.0f;
+  if (jacobian > 0.0f) density = lamina_folded_reflection_density(distribution, m, v, w_below) * jacobian;
+  if (n_frame > 1.0f && spread.z > 0.0f)
+    density += lamina_folded_reflection_density(distribution, m, v, spread) * lamina_cos_critical(n_frame);
   return density;
+}
+
+// The inverse of lamina_leave_or_spread's spread: the direction below that it maps onto the outer
+// direction w (both in the frame of the layers above the lobe).
+LAMINA_FN vec3 lamina_spread_source(vec3 w, float n_frame) {
+  return lamina_with_cosine(w, lamina_cos_critical(n_frame) * w.z);
 }
 
 LAMINA_FN float lamina_diffuse_lobe_pdf(vec3 w_below, float jacobian, float n_frame) {
   return w_below.z * n_frame * n_frame * LAMINA_INV_PI * jacobian;
+}
+
+// A lobe's draw w in the frame of the layers above it (absolute index n_frame): itself when inside
+// their exit cone (inside_cone true: still to be carried up), else spread over the outer hemisphere
+// by cos_out = cos_in / cos_critical (inside_cone false: already the outer direction). vec3(0)
+// when w is not above the horizon.
+LAMINA_FN vec3 lamina_leave_or_spread(vec3 w, float n_frame, LAMINA_OUT(bool) inside_cone) {
+  inside_cone = true;
+  if (w.z <= 0.0f) return vec3(0.0f);
+  if ((1.0f - w.z * w.z) * n_frame * n_frame <= 1.0f) return w;
+  inside_cone = false;
+  return lamina_with_cosine(w, w.z / lamina_cos_critical(n_frame));
 }
 
 // Draws a microfacet lobe's direction: plain NDF sampling, reflected about h, mirrored above the
@@ -138,11 +158,7 @@ LAMINA_FN vec3 lamina_sample_microfacet_lobe(int distribution, float m, vec3 v, 
   vec3 h = sample_microfacet_normal(distribution, m, u);
   vec3 w = 2.0f * dot(v, h) * h - v;
   if (w.z < 0.0f) w = mirror_across_horizon(w);
-  inside_cone = true;
-  if (w.z <= 0.0f) return vec3(0.0f);
-  if ((1.0f - w.z * w.z) * n_frame * n_frame <= 1.0f) return w;
-  inside_cone = false;
-  return lamina_with_cosine(w, w.z / lamina_cos_critical(n_frame));
+  return lamina_leave_or_spread(w, n_frame, inside_cone);
 }
 
 // Cosine-weighted inside the exit cone of a frame of absolute index n_frame: sin^2 uniform on
@@ -210,8 +226,9 @@ struct LaminaEntry {
 //   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, oren_nayar's sigma;
 //            y: roughness (layer, conductor; an angle or a slope, per `degrees`);
 //            z: a layer's medium thickness in micrometres
-//   normal   the shading normal the entry's interface or substrate sees, in the local frame: the
-//            frame slot a normal input will fill; (0, 0, 1) for every entry until one does
+//   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
+//            (tangent space, +z the surface's own normal; a mix's stays (0, 0, 1)); not unit:
+//            lamina_stack_resolve normalises it (lamina_entry_normal)
 struct LaminaInputs {
   vec3 colour0;
   vec3 colour1;
@@ -238,7 +255,9 @@ struct LaminaParams {
   vec3 albedo;      // lambert, oren_nayar
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
-  vec3 normal;      // the entry's shading normal (LaminaInputs.normal)
+  vec3 normal;      // the entry's frame in the shading frame (lamina_entry_normal): its normal
+  vec3 frame_x;     // and its tangents (lamina_to_entry)
+  vec3 frame_y;
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
@@ -438,6 +457,20 @@ LAMINA_FN float lamina_spread_own(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_ST
 LAMINA_FN bool lamina_on_conductor(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK], int i) {
   LaminaEntry base = entries[max(entries[i].first, 0)];
   return entries[i].kind == LAMINA_LAYER && base.kind == LAMINA_SUBSTRATE && base.model == LAMINA_SUBSTRATE_CONDUCTOR;
+}
+
+// Whether layer i's conductor base traps light as lamina_trapped_light follows it: a conductor right
+// under the layer, in the layer's own frame. Its echo, trapped light and forward part are worked
+// out for a metal parallel to the boundary; a metal tilted against it (a flake) sends its light
+// elsewhere, and with them it reflected up to 1.18 times the light it received (a 15-degree flake
+// of silver under a clear coat, seen from 70 degrees). Under a tilted metal the layer keeps only
+// its boundary and the carry, which never reflect more than they receive (lamina_tilt_weight);
+// what such a metal sends outside the exit cone is lost.
+LAMINA_FN bool lamina_traps_light(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+  vec3 base = params[max(entries[i].first, 0)].normal;
+  vec3 own = params[i].normal;
+  return lamina_on_conductor(entries, i) && base.x == own.x && base.y == own.y && base.z == own.z;
 }
 
 // What a conductor base reflects of light arriving at cosine mu under layer i: a_in, inside the
@@ -942,6 +975,75 @@ LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
               norm.z > LAMINA_MIN_DENOM ? 1.0f / norm.z : 0.0f);
 }
 
+// --- tilted entries ----------------------------------------------------------------------------
+// An interface or substrate may be tilted by a normal input (a flake, a glitter cell, a normal map):
+// its own frame's z is that normal, given in the shading frame (tangent space). The walks hand
+// directions from entry to entry in the shading frame; each entry turns what it is handed into its
+// own frame (lamina_to_entry), works there as if untilted, and turns the directions it hands on
+// back (lamina_from_entry). An untilted entry's frame is the identity, exactly: its numbers are those
+// of a stack without normals. A tilted entry's whole reflection (its own lobe and everything below
+// it) is weighted by lamina_tilt_weight, which keeps the stack's energy and reciprocity.
+
+// The lowest z of a normal input after normalising: 0.05, 87 degrees from the surface's normal. A
+// normal at or below the horizon (a texture's (0, 0, 0), a map's flipped channel) has no frame
+// that light from above could see; it is raised there, and (0, 0, 0) becomes (0, 0, 1).
+const float LAMINA_MIN_NORMAL_Z = 0.05f;
+LAMINA_FN vec3 lamina_entry_normal(vec3 n) { return normalize(vec3(n.x, n.y, max(n.z, LAMINA_MIN_NORMAL_Z))); }
+
+// Tangents completing a frame around the unit normal n (z > 0): Duff et al. 2017, "Building an
+// orthonormal basis, revisited", eq. (3) with sign +1. For n = (0, 0, 1) they are (1, 0, 0) and
+// (0, 1, 0) exactly, so turning into and out of the frame changes no bit.
+LAMINA_FN void lamina_entry_tangents(vec3 n, LAMINA_OUT(vec3) x, LAMINA_OUT(vec3) y) {
+  float a = -1.0f / (1.0f + n.z);
+  float b = n.x * n.y * a;
+  x = vec3(1.0f + n.x * n.x * a, b, -n.x);
+  y = vec3(b, 1.0f + n.y * n.y * a, -n.y);
+}
+
+// A direction in the shading frame turned into the frame of the entry whose parameters are p, and back.
+// An untilted entry's frame is the identity: its turns are skipped (the normal is (0, 0, 1)
+// exactly then; the same for every point of a material whose normals are not textured).
+LAMINA_FN vec3 lamina_to_entry(LAMINA_IN(LaminaParams) p, vec3 w) {
+  if (p.normal.x == 0.0f && p.normal.y == 0.0f) return w;
+  return vec3(dot(w, p.frame_x), dot(w, p.frame_y), dot(w, p.normal));
+}
+LAMINA_FN vec3 lamina_from_entry(LAMINA_IN(LaminaParams) p, vec3 w) {
+  if (p.normal.x == 0.0f && p.normal.y == 0.0f) return w;
+  return w.x * p.frame_x + w.y * p.frame_y + w.z * p.normal;
+}
+
+// The layer whose frame entry i's directions refract in: its nearest ancestor that is not a mix,
+// -1 for the surface's (the shading frame); from its parent's (above[parent], set first: parents
+// come before their children).
+LAMINA_FN int lamina_frame_above(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(int) above[LAMINA_STACK], int i) {
+  int parent = entries[i].parent;
+  if (parent < 0) return -1;
+  return entries[parent].kind == LAMINA_MIX ? above[parent] : parent;
+}
+
+// A direction in the shading frame turned into the frame of entry j (lamina_frame_above: -1 is the
+// shading frame itself), and back.
+LAMINA_FN vec3 lamina_to_frame(LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int j, vec3 w) {
+  return j < 0 ? w : lamina_to_entry(params[max(j, 0)], w);
+}
+LAMINA_FN vec3 lamina_from_frame(LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int j, vec3 w) {
+  return j < 0 ? w : lamina_from_entry(params[max(j, 0)], w);
+}
+
+// The weight of a tilted entry's reflection for directions l and v in its frame, whose cosines in
+// the frame of the entry above it (the surface for the top one) are z_above:
+//   c(l) c(v),   c(w) = min(1, cos_entry(w) / cos_above(w)).
+// The entry's reflection F keeps energy in its own frame, int F cos_entry <= 1; the layer above it
+// integrates against cos_above, and int F c(l) c(v) cos_above <= int F min(cos_above, cos_entry)
+// <= int F cos_entry <= 1, so the weighted entry keeps energy in the frame above, and by induction
+// the whole stack does; the product is symmetric, so reciprocity holds. (Without it, light grazing
+// the frame above but facing a tilted flake would count with the flake's larger cosine.) 1 for an
+// entry in the frame above's own, where the cosines are equal.
+LAMINA_FN vec2 lamina_tilt_weight(vec3 l, vec3 v, vec2 z_above) {
+  return vec2(min(1.0f, l.z / z_above.x), min(1.0f, v.z / z_above.y));
+}
+
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
 // slope to the entries below it, a mix passes on what it received. clamp_lower: Elek's rule that
 // raises each slope to at least the one above it. model: LAMINA_MODEL_*; for the energy-conserving
@@ -969,7 +1071,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.albedo = vec3(0.0f);
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
-    p.normal = inputs[i].normal;
+    p.normal = lamina_entry_normal(inputs[i].normal);
+    lamina_entry_tangents(p.normal, p.frame_x, p.frame_y);
     p.diffuse = vec3(0.0f);
     p.forward = vec3(0.0f);
     p.grid = vec2(0.0f);
@@ -1047,11 +1150,32 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
 
 // What one entry of lamina_stack_eval passes between its passes.
 struct LaminaEvalStep {
-  vec3 l_on;   // the L and V the entry hands to the entries below it
+  vec3 l_on;   // the L and V the entry hands to the entries below it, in the shading frame
   vec3 v_on;
+  vec2 z_on;   // their cosines in the frame they were refracted in (a mix: those it was handed)
+  vec2 tilt;   // the entry's lamina_tilt_weight for l and v (1 for a mix)
   vec3 carry;  // a layer's T a t
   vec3 f;      // the entry's own lobe, then (bottom up) its whole stack
 };
+
+// The directions entry i of a walk is handed (l and v in the shading frame, z_above their cosines
+// in the frame above it) in its own frame, and whether they reach it: both above its horizon (a
+// mix: above the horizon of the frame above). Sets the step's tilt weight and clears the rest.
+LAMINA_FN bool lamina_eval_enter(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 lt, vec3 vt, vec2 z_above,
+                                 LAMINA_OUT(vec3) l, LAMINA_OUT(vec3) v, LAMINA_OUT(LaminaEvalStep) step) {
+  l = lamina_to_entry(p, lt);
+  v = lamina_to_entry(p, vt);
+  bool mixing = e.kind == LAMINA_MIX;
+  bool reached = z_above.x > 0.0f && z_above.y > 0.0f && (mixing || (l.z > 0.0f && v.z > 0.0f));
+  step.f = vec3(0.0f);
+  step.carry = vec3(0.0f);
+  step.l_on = vec3(0.0f);
+  step.v_on = vec3(0.0f);
+  step.z_on = vec2(0.0f);
+  step.tilt = vec2(1.0f);
+  if (reached && !mixing) step.tilt = lamina_tilt_weight(l, v, z_above);
+  return reached;
+}
 
 // Elek's Algorithm 1 generalised to any stack (course sec. 3.1, Elek eq. 2):
 //   f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i,   a mix: (1 - w) f(a) + w f(b),
@@ -1063,20 +1187,24 @@ struct LaminaEvalStep {
 LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
+  LaminaEvalStep s[LAMINA_STACK];
   // A bare substrate is the only one-entry stack: its lobe is the whole walk. (count is constant
   // per material, so the branch is uniform on the GPU and in SIMD lanes.)
-  if (count == 1) return max(lamina_substrate_eval(entries[0], params[0], wi, wo), vec3(0.0f));
-  LaminaEvalStep s[LAMINA_STACK];
+  if (count == 1) {
+    vec3 l = vec3(0.0f);
+    vec3 v = vec3(0.0f);
+    if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
+    return max(lamina_substrate_eval(entries[0], params[0], l, v) * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f));
+  }
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
-    vec3 l = parent < 0 ? wi : s[parent].l_on;
-    vec3 v = parent < 0 ? wo : s[parent].v_on;
-    s[i].f = vec3(0.0f);
-    s[i].carry = vec3(0.0f);
-    s[i].l_on = vec3(0.0f);
-    s[i].v_on = vec3(0.0f);
+    vec3 l = vec3(0.0f);
+    vec3 v = vec3(0.0f);
+    bool reached = lamina_eval_enter(entries[i], params[i], parent < 0 ? wi : s[max(parent, 0)].l_on,
+                                     parent < 0 ? wo : s[max(parent, 0)].v_on,
+                                     parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on, l, v, s[i]);
     int kind = entries[i].kind;
-    if (l.z <= 0.0f || v.z <= 0.0f) {
+    if (!reached) {
       // not reached: nothing from here down
     } else if (kind == LAMINA_LAYER) {
       vec3 lb = vec3(0.0f);
@@ -1084,12 +1212,14 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
       vec3 c = vec3(0.0f);
       s[i].f = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
                                      params[i].absorption, params[i].thickness, lb, vb, c);
-      s[i].l_on = lb;
-      s[i].v_on = vb;
+      s[i].l_on = lamina_from_entry(params[i], lb);
+      s[i].v_on = lamina_from_entry(params[i], vb);
+      s[i].z_on = vec2(lb.z, vb.z);
       s[i].carry = c;
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;
       s[i].v_on = v;
+      s[i].z_on = parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on;
     } else {
       s[i].f = lamina_substrate_eval(entries[i], params[i], l, v);
     }
@@ -1101,6 +1231,7 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
     } else if (kind == LAMINA_MIX) {
       s[i].f = mix(s[entries[i].first].f, s[entries[i].second].f, params[i].weight);
     }
+    s[i].f = s[i].f * (s[i].tilt.x * s[i].tilt.y);
   }
   return max(s[0].f, vec3(0.0f));
 }
@@ -1111,26 +1242,30 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
 LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                             LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
-  if (count == 1) return max(lamina_substrate_eval(entries[0], params[0], wi, wo), vec3(0.0f));
   LaminaEvalStep s[LAMINA_STACK];  // f holds s; carry T(l) t(l) T(v) t(v) / eta^2
+  if (count == 1) {
+    vec3 l = vec3(0.0f);
+    vec3 v = vec3(0.0f);
+    if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
+    return max(lamina_substrate_eval(entries[0], params[0], l, v) * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f));
+  }
   vec3 u_l[LAMINA_STACK];          // a layer's passage for l, then (bottom up) the entry's u(l)
   vec3 u_v[LAMINA_STACK];
   vec4 gap_l[LAMINA_STACK];        // a layer's E + M at l and its medium's t at l' (lamina_gap_series)
   vec4 gap_v[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
-    vec3 l = parent < 0 ? wi : s[parent].l_on;
-    vec3 v = parent < 0 ? wo : s[parent].v_on;
-    s[i].f = vec3(0.0f);
-    s[i].carry = vec3(0.0f);
-    s[i].l_on = vec3(0.0f);
-    s[i].v_on = vec3(0.0f);
+    vec3 l = vec3(0.0f);
+    vec3 v = vec3(0.0f);
+    bool reached = lamina_eval_enter(entries[i], params[i], parent < 0 ? wi : s[max(parent, 0)].l_on,
+                                     parent < 0 ? wo : s[max(parent, 0)].v_on,
+                                     parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on, l, v, s[i]);
     u_l[i] = vec3(0.0f);
     u_v[i] = vec3(0.0f);
     gap_l[i] = vec4(0.0f);
     gap_v[i] = vec4(0.0f);
     int kind = entries[i].kind;
-    if (l.z <= 0.0f || v.z <= 0.0f) {
+    if (!reached) {
       // not reached: nothing from here down
     } else if (kind == LAMINA_LAYER) {
       vec3 lb = refract_down(l, params[i].eta);
@@ -1158,10 +1293,15 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       float inside_v = 1.0f;
       float keep_l = 1.0f;
       float keep_v = 1.0f;
-      vec3 trapped_l = lamina_trapped_light(entries, params, i, l.z, lb.z, reflected_l, echo_l, inside_l, keep_l);
-      vec3 trapped_v = lamina_trapped_light(entries, params, i, v.z, vb.z, reflected_v, echo_v, inside_v, keep_v);
+      bool trapping = lamina_traps_light(entries, params, i);
+      vec3 trapped_l = vec3(0.0f);
+      vec3 trapped_v = vec3(0.0f);
+      if (trapping) {
+        trapped_l = lamina_trapped_light(entries, params, i, l.z, lb.z, reflected_l, echo_l, inside_l, keep_l);
+        trapped_v = lamina_trapped_light(entries, params, i, v.z, vb.z, reflected_v, echo_v, inside_v, keep_v);
+      }
       vec3 boost = min(echo_l, echo_v) * sqrt(keep_l * keep_v);
-      if (lamina_on_conductor(entries, i) && lb.z > 0.0f && vb.z > 0.0f) {
+      if (trapping && lb.z > 0.0f && vb.z > 0.0f) {
         float kept = min(lamina_spread_kept(entries, params, i, lb.z, inside_l),
                          lamina_spread_kept(entries, params, i, vb.z, inside_v));
         boost = boost * kept;
@@ -1170,12 +1310,14 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
                                                params[i].m) *
                     (1.0f + gain_l * gain_v)) +
                lamina_forward_part(passage_l * trapped_l, passage_v * trapped_v, params[i].forward, l, v);
-      s[i].l_on = lb;
-      s[i].v_on = vb;
+      s[i].l_on = lamina_from_entry(params[i], lb);
+      s[i].v_on = lamina_from_entry(params[i], vb);
+      s[i].z_on = vec2(lb.z, vb.z);
       s[i].carry = passage_l * passage_v * boost / (params[i].eta * params[i].eta);
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;
       s[i].v_on = v;
+      s[i].z_on = parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on;
     } else {
       s[i].f = lamina_substrate_eval(entries[i], params[i], l, v) - params[i].diffuse;
       u_l[i] = vec3(1.0f);
@@ -1197,6 +1339,10 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
       s[i].f = mix(s[a].f + params[a].diffuse * u_l[a] * u_v[a], s[b].f + params[b].diffuse * u_l[b] * u_v[b],
                    params[i].weight);
     }
+    // A tilted entry's weight (lamina_tilt_weight): both parts, the diffuse one by its profiles.
+    s[i].f = s[i].f * (s[i].tilt.x * s[i].tilt.y);
+    u_l[i] = u_l[i] * s[i].tilt.x;
+    u_v[i] = u_v[i] * s[i].tilt.y;
   }
   return max(s[0].f + params[0].diffuse * u_l[0] * u_v[0], vec3(0.0f));
 }
@@ -1214,17 +1360,18 @@ LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
   float throughput[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
+    // wo as handed to the entry, in the shading frame (a mix's frame is the shading frame).
+    vec3 handed = wo;
     if (parent < 0) {
-      v[i] = wo;
       throughput[i] = 1.0f;
       valid[i] = wo.z > 0.0f;
     } else if (entries[parent].kind == LAMINA_MIX) {
       float share = entries[i].side == 0 ? 1.0f - params[parent].weight : params[parent].weight;
-      v[i] = v[parent];
+      handed = v[parent];
       throughput[i] = throughput[parent] * share;
       valid[i] = valid[parent];
     } else {
-      v[i] = v[parent];
+      handed = vec3(0.0f);
       throughput[i] = 0.0f;
       valid[i] = false;
       if (valid[parent]) {
@@ -1232,12 +1379,15 @@ LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
         vec3 below = lamina_selection_step(v[parent], params[parent].eta, entries[parent].fresnel,
                                            params[parent].absorption, params[parent].thickness, factor);
         if (below.z > 0.0f) {
-          v[i] = below;
+          handed = lamina_from_entry(params[parent], below);
           throughput[i] = throughput[parent] * factor;
           valid[i] = true;
         }
       }
     }
+    // In the entry's own frame; a tilted lobe is reached only above its horizon.
+    v[i] = lamina_to_entry(params[i], handed);
+    valid[i] = valid[i] && (entries[i].kind == LAMINA_MIX || v[i].z > 0.0f);
   }
   float total = 0.0f;
   int valid_count = 0;
@@ -1280,7 +1430,7 @@ LAMINA_FN float lamina_forward_sampling_share(LAMINA_IN_ARRAY(LaminaEntry) entri
                                               LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, vec3 v) {
   int parent = max(entries[i].parent, 0);
   vec3 forward = params[parent].forward;
-  bool has_forward = entries[i].parent >= 0 && lamina_on_conductor(entries, parent) &&
+  bool has_forward = entries[i].parent >= 0 && lamina_traps_light(entries, params, parent) &&
                      max(forward.x, max(forward.y, forward.z)) > 0.0f;
   if (!has_forward) return 0.0f;
   float trapped =
@@ -1302,35 +1452,50 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
                                  LAMINA_IN_ARRAY(float) weight[LAMINA_STACK], LAMINA_IN_ARRAY(vec3) v[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(bool) valid[LAMINA_STACK], vec3 wi, vec3 wo) {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
-  // wi refracted down to every entry, with d omega_below / d omega_outside along the way.
+  // wi refracted down to every entry, in the shading frame, with d omega_below / d omega_outside
+  // along the way (turning into and out of a layer's frame keeps solid angles).
   vec3 w[LAMINA_STACK];
   float jacobian[LAMINA_STACK];
+  int above[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
-    if (parent < 0) {
-      w[i] = wi;
-      jacobian[i] = 1.0f;
-    } else if (entries[parent].kind == LAMINA_MIX) {
+    above[i] = lamina_frame_above(entries, above, i);
+    w[i] = wi;
+    jacobian[i] = 1.0f;
+    if (parent >= 0 && entries[parent].kind == LAMINA_MIX) {
       w[i] = w[parent];
       jacobian[i] = jacobian[parent];
-    } else {
+    } else if (parent >= 0) {
       float eta = params[parent].eta;
-      vec3 below = refract_down(w[parent], eta);
-      jacobian[i] = jacobian[parent] * refraction_jacobian(w[parent].z, below.z, eta);
-      w[i] = below;
+      vec3 from_above = lamina_to_entry(params[parent], w[parent]);
+      vec3 below = refract_down(from_above, eta);
+      jacobian[i] = jacobian[parent] * refraction_jacobian(from_above.z, below.z, eta);
+      w[i] = lamina_from_entry(params[parent], below);
     }
   }
   float pdf = 0.0f;
   for (int i = 0; i < count; ++i) {
     if (lamina_is_lobe(entries[i]) && weight[i] > 0.0f && valid[i]) {
-      // The lobe's own draws reach wi only where it refracts down to the entry; the forward part's
-      // are drawn outside, so they reach every wi.
+      // A lobe's draws are tested against the exit cone in the frame of the layer above it, where
+      // they refract (lamina_stack_sample): they reach wi where wi refracts down to the entry (the
+      // direction in that frame is inside the cone then; a microfacet lobe's must also lie above
+      // its own horizon, where it draws), and a microfacet lobe's spread outside the cone reaches
+      // it too. The forward part's are drawn outside, so they reach every wi.
+      int a = above[i];
+      float n_frame = params[i].n_above;
+      vec3 w_frame = lamina_to_frame(params, a, w[i]);
+      vec3 w_own = lamina_to_entry(params[i], w[i]);
       float density = 0.0f;
-      if (w[i].z > 0.0f) {
-        density = lamina_is_microfacet_lobe(entries[i])
-                      ? lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w[i], jacobian[i],
-                                                   wi, params[i].n_above)
-                      : lamina_diffuse_lobe_pdf(w[i], jacobian[i], params[i].n_above);
+      if (lamina_is_microfacet_lobe(entries[i])) {
+        float through = w_frame.z > 0.0f && w_own.z > 0.0f ? jacobian[i] : 0.0f;
+        vec3 outer = lamina_to_frame(params, a, wi);
+        vec3 spread = vec3(0.0f);
+        if (n_frame > 1.0f && outer.z > 0.0f)
+          spread = lamina_to_entry(params[i], lamina_from_frame(params, a, lamina_spread_source(outer, n_frame)));
+        density = lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w_own, through, spread,
+                                             n_frame);
+      } else if (w_frame.z > 0.0f) {
+        density = lamina_diffuse_lobe_pdf(w_frame, jacobian[i], n_frame);
       }
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       pdf += weight[i] * ((1.0f - forward) * density + forward * wi.z * LAMINA_INV_PI);
@@ -1365,23 +1530,32 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
   if (chosen < 0) return vec3(0.0f);
   bool inside_cone = true;
   vec3 w = vec3(0.0f);
+  int above[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
+    above[i] = lamina_frame_above(entries, above, i);
     if (i == chosen) {
       // A conductor's share for its layer's forward part: cosine-weighted, already outside.
+      // A microfacet lobe reflects in its own frame; its draw is tested against the exit cone in
+      // the frame of the layer above it (lamina_frame_above), where it refracts. A diffuse lobe draws
+      // in that frame directly, cosine-weighted inside the cone: so every direction a tilted lobe
+      // reflects into can be drawn. The forward part's are drawn in the shading frame, outside.
+      int a = above[i];
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       if (u.x < forward) {
         w = lamina_sample_diffuse_lobe(vec2(u.x / forward, u.y), 1.0f);
         inside_cone = false;
       } else if (lamina_is_microfacet_lobe(entries[i])) {
-        w = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i],
-                                          vec2((u.x - forward) / (1.0f - forward), u.y), params[i].n_above,
-                                          inside_cone);
+        bool own_inside = true;
+        vec3 own = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i],
+                                                 vec2((u.x - forward) / (1.0f - forward), u.y), 1.0f, own_inside);
+        vec3 in_frame = own.z > 0.0f ? lamina_to_frame(params, a, lamina_from_entry(params[i], own)) : vec3(0.0f);
+        w = lamina_from_frame(params, a, lamina_leave_or_spread(in_frame, params[i].n_above, inside_cone));
       } else {
-        w = lamina_sample_diffuse_lobe(u, params[i].n_above);
+        w = lamina_from_frame(params, a, lamina_sample_diffuse_lobe(u, params[i].n_above));
       }
     }
   }
-  if (w.z <= 0.0f) return vec3(0.0f);
+  if (dot(w, w) <= 0.0f) return vec3(0.0f);
   // Up through the layers above it, nearest first: bottom up, an entry is on the way when it is the
   // chosen one or the parent of one on the way (children come after their parents).
   bool on_way[LAMINA_STACK];
@@ -1393,10 +1567,13 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
     if (kind == LAMINA_MIX) below = on_way[entries[i].first] || on_way[entries[i].second];
     on_way[i] = i == chosen || below;
     if (below && kind == LAMINA_LAYER && inside_cone && leaves) {
-      w = refract_up(w, params[i].eta);
-      leaves = w.z > 0.0f;
+      vec3 local = lamina_to_entry(params[i], w);
+      vec3 up = refract_up(local, params[i].eta);
+      leaves = local.z > 0.0f && up.z > 0.0f;
+      w = lamina_from_entry(params[i], up);
     }
   }
-  if (!leaves) return vec3(0.0f);
+  // A tilted lobe's direction may leave below the surface's horizon: none.
+  if (!leaves || w.z <= 0.0f) return vec3(0.0f);
   return normalize(w);
 }

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cpu_test_support.h"
+#include "graph/cpu/reference.h"
 #include "nodes/kernels/kernels.h"
 #include "random_stacks.h"
 #include "test_support.h"
@@ -320,6 +321,7 @@ const std::map<std::string, double>& documented_excess() {
       {"checker_tiles", 2.041 * 1.03},             // 0 deg, R, on a gold square
       {"christmas_orb", 1.846 * 1.03},             // 0 deg, R
       {"concrete_ball", 1.138 * 1.03},             // 89 deg, B
+      {"flake_car_paint", 1.029 * 1.03},           // 89 deg, B: as car_paint, at the flakes probed
       {"gold_metallic_paint", 1.978 * 1.03},       // 0 deg, R
       {"gold_paint", 1.570 * 1.03},                // 0 deg, R
       {"house_paint", 1.199 * 1.03},               // 89 deg, B
@@ -524,6 +526,9 @@ struct SamplingResult {
   double integral_grid = 0.0;         // adaptive quadrature over the chi-square bins
   double integral_halfvector = -1.0;  // adaptive quadrature over half vectors (negative: not run)
   long samples = 0, failed = 0;
+  // A stack with a tilted entry loses the draws that leave below the surface or meet total internal
+  // reflection in a tilted frame; its pdf integrates to what remains. Others lose none.
+  bool tilted = false;
   long evaluations = 0;
   double seconds = 0.0;
 };
@@ -598,6 +603,7 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
   const double n_d = double(n);
   SamplingResult r;
   r.samples = n;
+  r.tilted = cpu::tilted_entry(point) >= 0;
 
   // Draw.
   std::mt19937_64 rng(seed);
@@ -637,6 +643,26 @@ SamplingResult run_sampling_case(const SamplingCase& c, uint64_t seed) {
       r.integral_grid += p;
     }
   r.evaluations += grid.evaluations();
+  // The quadrature refines where the pdf varies as its first points see it; a tilted lobe's pdf
+  // ends sharply at its frame's horizon, and a sliver of it inside a bin can escape all of them. A
+  // bin that holds draws but almost no expected count is integrated again, refined around the
+  // draws it holds (where the pdf really is 0, that still finds 0).
+  std::vector<std::vector<dvec3>> held(expected.size());
+  for (const dvec3& w : directions) {
+    auto [theta, phi] = up.angles(w);
+    size_t b =
+        size_t(std::min(int(theta / dtheta), kThetaBins - 1) * kPhiBins + std::min(int(phi / dphi), kPhiBins - 1));
+    if (expected[b] < 1.0 && held[b].size() < 16) held[b].push_back(w);
+  }
+  for (size_t b = 0; b < expected.size(); ++b) {
+    if (held[b].empty()) continue;
+    test::SphericalQuadrature again(density, up, held[b], n_d);
+    const int i = int(b) / kPhiBins, j = int(b) % kPhiBins;
+    const double p = again.integrate(dtheta * i, dtheta * (i + 1), dphi * j, dphi * (j + 1));
+    r.integral_grid += p - expected[b] / n_d;
+    expected[b] = n_d * p;
+    r.evaluations += again.evaluations();
+  }
   auto global_name = [&](size_t index) {
     int i = int(index) / kPhiBins, j = int(index) % kPhiBins;
     char name[120];
@@ -771,6 +797,12 @@ TEST_CASE("every example samples its pdf, and its pdf integrates to 1") {
       const SamplingResult& r = run.results[i];
       std::string name = case_name(c);
       CAPTURE(name);
+      // A sampler draws a direction for (almost) every u; a tilted stack loses the share its pdf
+      // does not cover (within the quadrature's 1%), all of it where wo is below every tilted lobe.
+      const double lost = double(r.failed) / double(r.samples);
+      if (!r.tilted) CHECK(lost <= 1.0e-4);
+      if (r.tilted) CHECK(std::abs(lost - (1.0 - r.integral_grid)) <= 0.01);
+      if (r.failed == r.samples) continue;  // nothing drawn and nothing expected: no distribution to test
       CHECK_MESSAGE(r.global.p_value >= significance, "global grid chi2 " << r.global.statistic << " dof "
                                                                           << r.global.dof << " p " << r.global.p_value
                                                                           << "\nworst bins:\n"
@@ -780,8 +812,6 @@ TEST_CASE("every example samples its pdf, and its pdf integrates to 1") {
                                                                       << r.zoom.statistic << " dof " << r.zoom.dof
                                                                       << " p " << r.zoom.p_value << "\nworst bins:\n"
                                                                       << r.zoom.worst_bins);
-      // A valid sampler draws a direction for (almost) every u.
-      CHECK(double(r.failed) <= 1.0e-4 * double(r.samples));
       const std::string& ex = c.example->name;
       for (auto [p, label] : {std::pair{r.global.p_value, "grid"}, std::pair{r.zoom.p_value, "zoom"}}) {
         if (std::string(label) == "zoom" && !r.zoomed) continue;
@@ -807,7 +837,7 @@ TEST_CASE("every example samples its pdf, and its pdf integrates to 1") {
       }
     MESSAGE(summary);
   }
-  SUBCASE("pdf() integrates to 1 over the hemisphere") {
+  SUBCASE("pdf() integrates to 1 over the hemisphere, less the draws a tilted stack loses") {
     // Two quadratures: the adaptive one of the chi-square bins (theta x phi of wi, refined where pdf
     // varies and around the mirror direction), and the same adaptive quadrature over half vectors
     // (halfvector_integral), at phi = 0.
@@ -818,8 +848,10 @@ TEST_CASE("every example samples its pdf, and its pdf integrates to 1") {
       const SamplingResult& r = run.results[i];
       std::string name = case_name(c);
       CAPTURE(name);
-      CHECK(std::abs(r.integral_grid - 1.0) <= 0.01);
-      if (r.integral_halfvector >= 0.0) CHECK(std::abs(r.integral_halfvector - 1.0) <= 0.01);
+      // A tilted stack's pdf covers what its draws do not lose (checked with the chi-square).
+      const double whole = r.tilted ? 1.0 - double(r.failed) / double(r.samples) : 1.0;
+      CHECK(std::abs(r.integral_grid - whole) <= 0.01);
+      if (r.integral_halfvector >= 0.0) CHECK(std::abs(r.integral_halfvector - whole) <= 0.01);
       auto widen = [](std::map<std::string, std::pair<double, double>>& m, const std::string& k, double v) {
         auto it = m.find(k);
         if (it == m.end()) {
@@ -859,7 +891,8 @@ TEST_CASE("sample() returns eval() and pdf() of the direction it drew") {
       vec2 u(to_unit_float(test::uniform(rng)), to_unit_float(test::uniform(rng)));
       cpu::Sample s = example.evaluator.sample(ctx, wo, u, to_unit_float(test::uniform(rng)));
       if (!(s.pdf > 0.0f)) {
-        ++failed;
+        // A tilted stack loses draws by design (the chi-square test checks that its pdf says so).
+        if (cpu::tilted_entry(example.evaluator.bind(ctx)) < 0) ++failed;
         continue;
       }
       if (!(s.wi.z > 0.0f) || std::abs(glm::length(s.wi) - 1.0f) > 1.0e-6f || s.lobe < 0 ||

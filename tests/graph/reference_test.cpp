@@ -524,6 +524,8 @@ const std::vector<Material>& materials() {
       const std::string text = nlohmann::json{{"format", random.at("format")}, {"materials", {material}}}.dump();
       list.push_back({material.at("name").get<std::string>(), test::evaluator_from_text(text)});
     }
+    // The solver walks flat boundaries only: tilted stacks are refused (a test below), not compared.
+    std::erase_if(list, [](const Material& m) { return cpu::tilted_entry(m.evaluator.bind({})) >= 0; });
     return list;
   }();
   return all;
@@ -626,3 +628,22 @@ TEST_CASE("the reference gives the same digits for the same arguments, and its s
 
 }  // namespace
 }  // namespace lamina
+
+TEST_CASE("the reference solver refuses a stack tilted by a normal input, and names the tilted entry") {
+  auto material = [](const std::string& normal) {
+    return test::evaluator_from_text(
+        R"({"format": 1, "materials": [{"name": "m", "surface": "@coat", "nodes": [
+             {"id": "coat", "type": "layer", "interface": "@top", "base": "@base"},
+             {"id": "top", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 10},
+             {"id": "base", "type": "substrate/lambert", "albedo": [0.5, 0.5, 0.5], "normal": )" +
+        normal + "}]}]}");
+  };
+  const cpu::Evaluator flat = material("[0, 0, 1]");
+  const cpu::Evaluator tilted = material("[0.3, 0, 0.95]");
+  const vec3 wi = direction_at(30.0, 0.0), wo = direction_at(40.0, 180.0);
+  CHECK(cpu::tilted_entry(flat.bind({})) == -1);
+  CHECK_NOTHROW(cpu::reference_eval(flat.bind({}), wi, wo, {64, 1000, 0}));
+  CHECK(cpu::tilted_entry(tilted.bind({})) == 1);
+  CHECK_THROWS_AS(cpu::reference_eval(tilted.bind({}), wi, wo, {64, 1000, 0}), std::domain_error);
+  CHECK_THROWS_AS(cpu::reference_albedo(tilted.bind({}), wo, {64, 1000, 0}), std::domain_error);
+}

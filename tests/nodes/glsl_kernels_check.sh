@@ -92,6 +92,7 @@ void main() {
   f += lamina_cos_critical(1.5f) + lamina_microfacet_lobe_pdf(0, m, v, w, 1.0f, w, 1.5f);
   f += lamina_diffuse_lobe_pdf(w, 1.0f, 1.5f);
   s += lamina_sample_microfacet_lobe(2, m, v, v_uv, 1.5f, inside) + lamina_sample_diffuse_lobe(v_uv, 1.5f);
+  s += lamina_leave_or_spread(w, 1.5f, inside) + lamina_spread_source(w, 1.5f) + lamina_entry_normal(w);
   s.xy += lamina_image_uv(v_uv, 30.0f, vec2(2.0f), vec2(0.1f));
   f += float(lamina_positive_mod(-3, 4) + lamina_wrap_index(-2, 8, 2));
   s.xy += lamina_bilinear_texels(v_uv, 16, 8, 0, texels) + vec2(texels.xy);
@@ -116,7 +117,7 @@ void main() {
     inputs[i].colour1 = vec3(3.0f);
     inputs[i].colour2 = vec3(0.1f);
     inputs[i].scalars = vec4(1.5f, 10.0f, 0.5f, 0.0f);
-    inputs[i].normal = vec3(0.0f, 0.0f, 1.0f);
+    inputs[i].normal = i == 2 ? w : vec3(0.0f, 0.0f, 1.0f);
   }
   LaminaParams params[LAMINA_STACK];
   lamina_stack_resolve(LAMINA_STACK, entries, inputs, true, int(c > 0.5f), params);
@@ -127,6 +128,15 @@ void main() {
   int chosen = lamina_stack_choose(LAMINA_STACK, weight, c);
   s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(LAMINA_STACK, entries, params, sv, chosen, v_uv);
   s += lamina_substrate_eval(entries[2], params[2], w, v);
+  vec3 tx = vec3(0.0f);
+  vec3 ty = vec3(0.0f);
+  lamina_entry_tangents(params[2].normal, tx, ty);
+  s += tx + ty + lamina_from_entry(params[2], lamina_to_entry(params[2], w));
+  int above[LAMINA_STACK];
+  for (int i = 0; i < LAMINA_STACK; ++i) above[i] = lamina_frame_above(entries, above, i);
+  s += lamina_to_frame(params, above[2], w) + lamina_from_frame(params, -1, w);
+  s.xy += lamina_tilt_weight(w, v, vec2(0.5f));
+  if (lamina_traps_light(entries, params, 0)) f += 1.0f;
   f += lamina_stack_pdf(LAMINA_STACK, entries, params, weight, sv, valid, w, v);
   // energy
   f += lamina_dielectric_albedo(0, 0, c, m, 1.5f) + lamina_albedo_node_eta(1) + lamina_albedo_node_slope(1);
