@@ -105,12 +105,14 @@ TEST_CASE("a tilted Lambert base reflects albedo / pi times min(1, cos_n / cos_z
 TEST_CASE("tilted stacks keep energy and reciprocity where the tilt raises the cosines most") {
   // A tilted base under a coat and a tilted coat over it, seen from grazing angles on the side the
   // tilt faces: there the entry's cosine exceeds the surface's by the most.
-  for (const auto& [base, coat] : {std::pair<std::string, std::string>{"[0.5, 0, 0.866]", ""},
-                                   {"", "[0.5, 0, 0.866]"},
-                                   {"[0.7, 0.2, 0.686]", "[-0.3, 0, 0.954]"}}) {
-    CAPTURE(base);
-    CAPTURE(coat);
-    const cpu::Evaluator e = tilted(true, base, coat);
+  struct Case {
+    std::string base, coat;
+  };
+  for (const Case& c :
+       {Case{"[0.5, 0, 0.866]", ""}, Case{"", "[0.5, 0, 0.866]"}, Case{"[0.7, 0.2, 0.686]", "[-0.3, 0, 0.954]"}}) {
+    CAPTURE(c.base);
+    CAPTURE(c.coat);
+    const cpu::Evaluator e = tilted(true, c.base, c.coat);
     for (double theta : {0.0, 40.0, 70.0, 85.0})
       for (double phi : {0.0, 180.0}) {
         const double a = theta * test::kPi / 180.0, b = phi * test::kPi / 180.0;
