@@ -406,8 +406,11 @@ TEST_CASE("every example's white furnace albedo at 0..89 deg is non-negative and
       // nothing more to check
     } else if (excess_documented) {
       CHECK_MESSAGE(largest <= documented->second, "largest albedo " << largest << " at " << where);
-      CHECK_MESSAGE(largest > 1.0 + kUndocumentedTolerance,
-                    "no longer exceeds 1: drop it from documented_excess() and the README");
+      // The sanitised sweep probes 4 of a textured example's 16 uvs and may miss the state where it
+      // peaks (flake_car_paint's excess is one flake's, at 89 degrees).
+      if (!(test::kSanitized && example.textured))
+        CHECK_MESSAGE(largest > 1.0 + kUndocumentedTolerance,
+                      "no longer exceeds 1: drop it from documented_excess() and the README");
     } else {
       CHECK_MESSAGE(largest_checked <= 1.0 + kUndocumentedTolerance,
                     "albedo " << largest_checked << " at " << where_checked << " (" << kRefinedPoints
