@@ -28,7 +28,7 @@ kernels::LaminaInputs kernel_constants(const StackEntry& s, bool fold_slopes) {
   x.colour0 = s.colour0.constant;
   x.colour1 = s.colour1.constant;
   x.colour2 = s.colour2.constant;
-  x.scalars = glm::vec4(s.scalar_x.constant.x, s.scalar_y.constant.x, s.scalar_z.constant.x, 0.0f);
+  x.scalars = glm::vec4(s.scalar_x.constant.x, s.scalar_y.constant.x, s.scalar_z.constant.x, s.scalar_w.constant.x);
   x.normal = s.normal.constant;
   if (folds_slope(s, fold_slopes)) x.scalars.y = kernels::lamina_slope(x.scalars.y, true);
   return x;

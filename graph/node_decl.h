@@ -119,6 +119,10 @@ using NodeCheck = void (*)(const NodeCheckContext&);
 using NodeLower = void (*)(NodeLowering&);
 using NodeRun = void (*)(const TextureOp&, const ShadingContext&, float* registers);
 using NodeEmitGlsl = void (*)(const TextureOp&, glsl::OpWriter&);
+// A texture node's finest detail over uv, in features per uv unit (cells, checks, a noise's
+// highest octave, an image's texels): what the glTF fallback's bake resolution follows. 0 for a
+// pattern over position, which no uv image holds.
+using NodeUvDetail = float (*)(const TextureOp&);
 
 // What classification (graph/classify.h) asks of a medium: whether it tints what passes through
 // it, and why, in words for the reason line.
@@ -140,6 +144,7 @@ struct NodeDecl {
   NodeLower lower = nullptr;
   NodeRun run = nullptr;
   NodeEmitGlsl emit_glsl = nullptr;
+  NodeUvDetail uv_detail = nullptr;  // texture nodes with detail of their own over uv
   // A texture node whose outputs depend on the shading point, not only on its inputs: never folded
   // into constants at compile time, even when every input is constant.
   bool varies = false;

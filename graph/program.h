@@ -43,6 +43,8 @@ struct InputRef {
   std::string parameter;  // comments after them
 
   bool linked() const { return slot >= 0; }
+  // The largest value its first component can take: the constant, or the top of a link's range.
+  float largest() const { return linked() ? hi : constant.x; }
 };
 
 // One texture or math node at a shading point: its behaviour (NodeDecl::run on the CPU,
@@ -81,7 +83,7 @@ struct StackEntry {
   int second = -1;
   // LaminaInputs, member by member; an input a model does not read stays a constant 0.
   InputRef colour0 = vec3_input(), colour1 = vec3_input(), colour2 = vec3_input();
-  InputRef scalar_x, scalar_y, scalar_z;
+  InputRef scalar_x, scalar_y, scalar_z, scalar_w;
   // The frame slot: a normal input will tilt the entry's frame; the shading normal until then.
   InputRef normal = vec3_input(glm::vec3(0.0f, 0.0f, 1.0f));
 

@@ -48,25 +48,40 @@ static void check_select(const NodeCheckContext& ctx) {
 }
 
 // Entry `part` k of the chain (compile.cpp) shows stack k where floor(index) <= k, else the entries
-// after it: its weight is 1 from index k + 1 on.
+// after it: its threshold is k + 1 (lamina_select_weight, which also reads the coverage and the
+// number of stacks).
 static void lower_select(NodeLowering& n) {
   StackEntry& e = n.entry();
   e.kind = kernels::LAMINA_MIX;
   e.model = kernels::LAMINA_MIX_SELECT;
   e.scalar_x = n.input("index");
   e.scalar_y.constant = glm::vec3(float(n.part() + 1));
+  e.scalar_z = n.input("coverage");
+  int count = 0;
+  while (count < kMaxSelectStacks && n.given(stack_param(count))) ++count;
+  e.scalar_w.constant = glm::vec3(float(count));
 }
 
 NodeDecl declare_select() {
   NodeDecl d;
   d.type = "select";
   d.kind = NodeKind::Select;
-  d.doc = "one of N stacks per shading point: stack_k where floor(index) = k (index clamped to [0, N - 1])";
+  d.doc =
+      "one of N stacks per shading point: stack_k where floor(index) = k (index clamped to [0, N - 1]); where a "
+      "pixel covers many cells (coverage), every stack in proportion";
   d.params.push_back(param("index", ValueType::Float)
                          .range(0.0, double(kMaxSelectStacks - 1))
                          .links()
                          .described("which stack, counted from 0; usually a cell value remapped to [0, N), e.g. "
                                     "a texture/voronoi value through math/remap with out_max N"));
+  d.params.push_back(param("coverage", ValueType::Float)
+                         .range(0.0, 1.0)
+                         .or_default(0.0)
+                         .links()
+                         .described("how much of the cell pattern behind the index a pixel covers: 0 shows the one "
+                                    "stack the index names, 1 every stack in equal shares, the mean over many "
+                                    "cells whose uniform values the index spreads over [0, N); link "
+                                    "texture/voronoi's coverage"));
   for (int k = 0; k < kMaxSelectStacks; ++k)
     d.params.push_back(param(stack_param(k), ValueType::Stack)
                            .links()

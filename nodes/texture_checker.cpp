@@ -1,4 +1,7 @@
 // texture/checker: alternating squares in uv, the classic test pattern.
+#include <algorithm>
+#include <cmath>
+
 #include "graph/glsl/op_writer.h"
 #include "graph/lowering.h"
 #include "graph/node_decl.h"
@@ -25,6 +28,12 @@ static void emit_checker(const TextureOp& op, glsl::OpWriter& w) {
   w.output(op, 1, v);
 }
 
+// Checks per uv unit along the finer axis.
+static float uv_detail_checker(const TextureOp& op) {
+  const InputRef& scale = op.inputs[2];
+  return scale.linked() ? scale.hi : std::max(std::abs(scale.constant.x), std::abs(scale.constant.y));
+}
+
 NodeDecl declare_texture_checker() {
   NodeDecl d;
   d.type = "texture/checker";
@@ -49,6 +58,7 @@ NodeDecl declare_texture_checker() {
   d.lower = lower_checker;
   d.run = run_checker;
   d.emit_glsl = emit_checker;
+  d.uv_detail = uv_detail_checker;
   d.varies = true;
   return d;
 }

@@ -1,4 +1,7 @@
 // texture/image: an image file, addressed by a transformed uv.
+#include <algorithm>
+#include <cmath>
+
 #include "graph/cpu/image.h"
 #include "graph/diagnostics.h"
 #include "graph/file_access.h"
@@ -84,6 +87,14 @@ static void emit_image(const TextureOp& op, glsl::OpWriter& w) {
   w.output(op, 2, texel + ".w");
 }
 
+// Texels per uv unit: the image's larger side times the larger tiling factor.
+static float uv_detail_image(const TextureOp& op) {
+  if (!op.image) return 0.0f;
+  const InputRef& scale = op.inputs[1];
+  const float tiling = scale.linked() ? scale.hi : std::max(std::abs(scale.constant.x), std::abs(scale.constant.y));
+  return float(std::max(op.image->width, op.image->height)) * tiling;
+}
+
 NodeDecl declare_texture_image() {
   NodeDecl d;
   d.type = "texture/image";
@@ -115,6 +126,7 @@ NodeDecl declare_texture_image() {
   d.lower = lower_image;
   d.run = run_image;
   d.emit_glsl = emit_image;
+  d.uv_detail = uv_detail_image;
   d.varies = true;
   d.gltf = "its file becomes a glTF image of the lossless extension; the fallback bakes its effect into textures";
   return d;

@@ -1,6 +1,9 @@
 // texture/marble: Perlin's marble, stripes displaced by turbulence ("An Image Synthesizer", SIGGRAPH
 // 1985, sec. 5); the course's aventurescent stones switch between surface maps with it (course
 // sec. 5.2.1).
+#include <algorithm>
+#include <cmath>
+
 #include "graph/glsl/op_writer.h"
 #include "graph/lowering.h"
 #include "graph/node_decl.h"
@@ -37,6 +40,15 @@ static void emit_marble(const TextureOp& op, glsl::OpWriter& w) {
                ", " + seed_literal(op.choices[2]) + ", " + space_footprint(op.choices[0], w) + ")");
 }
 
+// The finer of the turbulence's highest octave (scale lacunarity^(octaves - 1) cells per uv unit)
+// and the stripes along u or v (stripes times the direction's component).
+static float uv_detail_marble(const TextureOp& op) {
+  if (op.choices[0] != 0) return 0.0f;
+  const float turbulence = op.inputs[0].largest() * std::pow(op.inputs[4].largest(), float(op.choices[1] - 1));
+  const glm::vec3 direction = op.inputs[1].linked() ? glm::vec3(1.0f) : glm::abs(op.inputs[1].constant);
+  return std::max(turbulence, op.inputs[2].largest() * std::max(direction.x, direction.y));
+}
+
 NodeDecl declare_texture_marble() {
   NodeDecl d;
   d.type = "texture/marble";
@@ -64,6 +76,7 @@ NodeDecl declare_texture_marble() {
   d.lower = lower_marble;
   d.run = run_marble;
   d.emit_glsl = emit_marble;
+  d.uv_detail = uv_detail_marble;
   d.varies = true;
   return d;
 }

@@ -1,5 +1,8 @@
 // texture/noise: gradient noise and its fractal sums (fBm, turbulence) over uv or position, for
 // grey maps such as where patina grows (Elek sec. 4.2).
+#include <algorithm>
+#include <cmath>
+
 #include "graph/glsl/op_writer.h"
 #include "graph/lowering.h"
 #include "graph/node_decl.h"
@@ -37,6 +40,12 @@ static void emit_noise(const TextureOp& op, glsl::OpWriter& w) {
                space_footprint(op.choices[0], w) + " * " + w.input(op, 0) + ")");
 }
 
+// The highest octave's cells per uv unit: scale lacunarity^(octaves - 1).
+static float uv_detail_noise(const TextureOp& op) {
+  if (op.choices[0] != 0) return 0.0f;
+  return op.inputs[0].largest() * std::pow(op.inputs[1].largest(), float(op.choices[1] - 1));
+}
+
 NodeDecl declare_texture_noise() {
   NodeDecl d;
   d.type = "texture/noise";
@@ -57,6 +66,7 @@ NodeDecl declare_texture_noise() {
   d.lower = lower_noise;
   d.run = run_noise;
   d.emit_glsl = emit_noise;
+  d.uv_detail = uv_detail_noise;
   d.varies = true;
   return d;
 }

@@ -11,7 +11,7 @@
 namespace lamina {
 
 // Inputs: scale, jitter, tilt_deg. Choices: space, seed, tilt distribution (0 Beckmann, 2 GGX).
-// Outputs: value, color, f1, f2, edge, normal.
+// Outputs: value, color, f1, f2, edge, normal, coverage.
 static void lower_voronoi(NodeLowering& n) {
   TextureOp& op = n.op();
   op.inputs = {n.input("scale"), n.input("jitter"), n.input("tilt_deg")};
@@ -31,6 +31,7 @@ static void run_voronoi(const TextureOp& op, const ShadingContext& ctx, float* r
   write_float(r, op.outputs[3], v.distances.y);
   write_float(r, op.outputs[4], v.distances.y - v.distances.x);
   write_vec3(r, op.outputs[5], v.normal);
+  write_float(r, op.outputs[6], v.coverage);
 }
 
 static void emit_voronoi(const TextureOp& op, glsl::OpWriter& w) {
@@ -48,7 +49,11 @@ static void emit_voronoi(const TextureOp& op, glsl::OpWriter& w) {
   w.output(op, 3, v + ".distances.y");
   w.output(op, 4, v + ".distances.y - " + v + ".distances.x");
   w.output(op, 5, v + ".normal");
+  w.output(op, 6, v + ".coverage");
 }
+
+// Cells per uv unit.
+static float uv_detail_voronoi(const TextureOp& op) { return op.choices[0] == 0 ? op.inputs[0].largest() : 0.0f; }
 
 NodeDecl declare_texture_voronoi() {
   NodeDecl d;
@@ -81,10 +86,16 @@ NodeDecl declare_texture_voronoi() {
   d.outputs.push_back({"f1", ValueType::Float, "distance to the nearest feature point, in cells"});
   d.outputs.push_back({"f2", ValueType::Float, "distance to the second nearest feature point, in cells"});
   d.outputs.push_back({"edge", ValueType::Float, "f2 - f1: 0 on the borders between cells"});
-  d.outputs.push_back({"normal", ValueType::Vec3, "the nearest cell's unit normal in tangent space, +z untilted"});
+  d.outputs.push_back({"normal", ValueType::Vec3,
+                       "the nearest cell's unit normal in tangent space, +z untilted; where the pixel covers many "
+                       "cells, their mean, whose length below 1 widens the lobe it tilts"});
+  d.outputs.push_back({"coverage", ValueType::Float,
+                       "how much of the pattern the pixel averages: 0 up to half a cell per pixel, 1 from two "
+                       "cells on; link a select's coverage"});
   d.lower = lower_voronoi;
   d.run = run_voronoi;
   d.emit_glsl = emit_voronoi;
+  d.uv_detail = uv_detail_voronoi;
   d.varies = true;
   return d;
 }

@@ -16,7 +16,7 @@ struct GltfOptions {
   std::string input;
   std::string output;
   bool report = false;
-  int bake_size = 256;
+  int bake_size = 0;  // auto
   int columns = 4;
   InputOptions input_options;
 };
@@ -44,6 +44,7 @@ void print_report(const gltf::Export& result) {
     if (f.uses_specular) extensions += " specular";
     if (f.base_color || f.metallic_roughness || f.clearcoat) extensions += " +baked textures";
     std::string states = std::to_string(f.states.size()) + (f.interpolated ? "~" : "");
+    if (f.bake_size > 0) extensions += " (" + std::to_string(f.bake_size) + " px)";
     std::string metallic = f.metallic_roughness ? "tex" : fixed(f.params.metallic, 2);
     std::string roughness = f.metallic_roughness ? "tex" : fixed(f.params.roughness, 2);
     std::printf("  %-24s %6s %8s %9s %7s %7s %8s %7s %5s %5s %s\n", m.name.c_str(), states.c_str(), metallic.c_str(),
@@ -61,8 +62,9 @@ int run_gltf(const GltfOptions& o) {
     print_problem("-o: '" + o.output + "' must end in .gltf or .glb (the extension picks the container)");
     return kExitInvalid;
   }
-  if (o.bake_size < 1 || o.bake_size > 4096) {
-    std::cerr << "lamina: --bake-size: expected 1 to 4096 texels, found " << o.bake_size << "\n";
+  if (o.bake_size < 0 || o.bake_size > 4096) {
+    std::cerr << "lamina: --bake-size: expected 1 to 4096 texels, or 0 for a size chosen per material, found "
+              << o.bake_size << "\n";
     return kExitInvalid;
   }
   Scene scene;
@@ -127,7 +129,9 @@ void add_gltf(CLI::App& app, Runner& runner) {
       ->required();
   cmd->add_flag("--report", o->report, "print each material's fallback fit and its errors");
   add_input_options(*cmd, o->input_options);
-  cmd->add_option("--bake-size", o->bake_size, "texels per side of fallback textures baked from texture nodes")
+  cmd->add_option("--bake-size", o->bake_size,
+                  "texels per side of fallback textures baked from texture nodes; 0 (the default): per material, "
+                  "twice its finest detail over uv as a power of two from 64 to 512 (README, glTF)")
       ->capture_default_str();
   cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")
       ->check(CLI::Range(1, 64))

@@ -114,6 +114,7 @@ void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point) const {
     if (s.scalar_x.linked()) x.scalars.x = read_float(s.scalar_x, r);
     if (s.scalar_y.linked()) x.scalars.y = read_float(s.scalar_y, r);
     if (s.scalar_z.linked()) x.scalars.z = read_float(s.scalar_z, r);
+    if (s.scalar_w.linked()) x.scalars.w = read_float(s.scalar_w, r);
     if (s.normal.linked()) x.normal = read_vec3(s.normal, r);
   }
   k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), program_.clamp_lower_roughness, program_.model,

@@ -358,7 +358,7 @@ ReferenceEstimate run(const ShadingPoint& point, uint64_t seed, const ReferenceO
 int tilted_entry(const ShadingPoint& point) {
   const ShadingPoint::Stack stack = point.stack();
   for (int i = 0; i < stack.count; ++i)
-    if (stack.params[i].normal != vec3(0.0f, 0.0f, 1.0f)) return i;
+    if (!k::lamina_entry_flat(stack.params[i])) return i;
   return -1;
 }
 

@@ -274,7 +274,7 @@ class MaterialEmitter final : public OpWriter {
       inputs << at << "colour2 = " << input(e.colour2, folded.colour2) << ";\n";
       inputs << at << "scalars = vec4(" << input(e.scalar_x, glm::vec3(folded.scalars.x)) << ", "
              << input(e.scalar_y, glm::vec3(folded.scalars.y)) << ", " << input(e.scalar_z, glm::vec3(folded.scalars.z))
-             << ", 0.0f);\n";
+             << ", " << input(e.scalar_w, glm::vec3(folded.scalars.w)) << ");\n";
       inputs << at << "normal = " << input(e.normal, folded.normal) << ";\n";
     }
     s << ops_.str() << inputs.str();

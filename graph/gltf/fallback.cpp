@@ -45,11 +45,20 @@ struct StateGrid {
   std::vector<int> state_of;  // per texel, row-major from the top-left
 };
 
+// A texel's shading context: its centre, and a footprint of one texel, so that detail finer than a
+// texel (Voronoi cells, noise octaves) bakes as its mean rather than as whichever value the centre hits.
+ShadingContext texel_context(glm::vec2 uv, int size) {
+  ShadingContext ctx;
+  ctx.uv = uv;
+  ctx.footprint = 1.0f / float(size);
+  return ctx;
+}
+
 StateGrid texture_states(const cpu::Evaluator& evaluator, int size) {
   StateGrid grid;
   std::map<std::vector<float>, int> index;
   grid.state_of.resize(static_cast<size_t>(size) * static_cast<size_t>(size));
-  ShadingContext ctx;
+  ShadingContext ctx = texel_context(glm::vec2(0.0f), size);
   for (int row = 0; row < size; ++row)
     for (int column = 0; column < size; ++column) {
       ctx.uv = glm::vec2((float(column) + 0.5f) / float(size), (float(row) + 0.5f) / float(size));
@@ -208,6 +217,15 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
 
 }  // namespace
 
+int auto_bake_size(const Program& program) {
+  float detail = 0.0f;
+  for (const TextureOp& op : program.ops)
+    if (op.decl && op.decl->uv_detail) detail = std::max(detail, op.decl->uv_detail(op));
+  int size = kMinAutoBakeSize;
+  while (size < kMaxAutoBakeSize && float(size) < 2.0f * detail) size *= 2;
+  return size;
+}
+
 Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
   const cpu::Evaluator evaluator(program);
   Fallback out;
@@ -228,15 +246,12 @@ Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
     return out;
   }
 
-  const int size = std::max(1, options.bake_size);
+  const int size = options.bake_size > 0 ? options.bake_size : auto_bake_size(program);
+  out.bake_size = size;
   const StateGrid grid = texture_states(evaluator, size);
   const size_t state_count = grid.registers.size();
   std::vector<PbrParams> state_params(state_count);
-  auto fit_state = [&](size_t s) {
-    ShadingContext ctx;
-    ctx.uv = grid.first_uv[s];
-    return fit_pbr(evaluator, ctx);
-  };
+  auto fit_state = [&](size_t s) { return fit_pbr(evaluator, texel_context(grid.first_uv[s], size)); };
 
   if (static_cast<int>(state_count) <= options.max_states) {
     for (size_t s = 0; s < state_count; ++s) {

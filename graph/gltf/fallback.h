@@ -19,10 +19,20 @@ struct BakedImage {
   std::vector<uint8_t> pixels;
 };
 
+// The bake resolution a material gets unless told otherwise: twice its finest detail over uv (the
+// largest NodeDecl::uv_detail of its texture nodes), rounded up to a power of two, within these.
+// At most 512: a 1024 bake took Sunstone's export from 8 to 25 s and 0.5 GB (its 600 Voronoi cells
+// per uv unit, a state per cell), where 512 texels already bake the cells' filtered mean.
+inline constexpr int kMinAutoBakeSize = 64;
+inline constexpr int kMaxAutoBakeSize = 512;
+
 struct FallbackOptions {
-  int bake_size = 256;  // texels per side of baked textures
-  int max_states = 9;   // at most this many fits per textured material; texels between interpolate
+  int bake_size = 0;   // texels per side of baked textures; 0: chosen per material (auto_bake_size)
+  int max_states = 9;  // at most this many fits per textured material; texels between interpolate
 };
+
+// The automatic bake size of `program` (kMinAutoBakeSize for one without detail over uv).
+int auto_bake_size(const Program& program);
 
 struct Fallback {
   // Factors; where a texture carries a parameter its factor is 1 (the texture holds the value).
@@ -40,6 +50,7 @@ struct Fallback {
   };
   std::vector<State> states;
   bool interpolated = false;  // more distinct states than max_states: texels interpolate fits
+  int bake_size = 0;          // texels per side of the baked textures (0: nothing baked)
   FitError worst;             // the worst of each error over the states
 };
 

@@ -290,9 +290,11 @@ FitResult fit_pbr(const FitTarget& target) {
 }
 
 FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx) {
+  // Bound once: a textured material resolves its stack here, not at each of the fit's evaluations.
+  const cpu::ShadingPoint point = material.bind(ctx);
   FitTarget target;
-  target.eval = [&](glm::vec3 wi, glm::vec3 wo) { return material.eval(ctx, wi, wo); };
-  target.albedo = [&](glm::vec3 wo) { return material.albedo(ctx, wo); };
+  target.eval = [&](glm::vec3 wi, glm::vec3 wo) { return point.eval(wi, wo); };
+  target.albedo = [&](glm::vec3 wo) { return point.albedo(wo); };
   return fit_pbr(target);
 }
 

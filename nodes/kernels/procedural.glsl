@@ -237,13 +237,18 @@ struct LaminaVoronoi {
   float value;     // the nearest cell's random value in [0, 1)
   vec3 colour;     // its random colour in [0, 1)^3
   vec3 normal;     // its random unit normal, tilted from +z by slope m's distribution
+  float coverage;  // how much of the pattern the pixel averages: 0 a point sample, 1 many cells
 };
 
 // tilt_deg: the RMS slope angle of the cells' normals (m = tan(tilt_deg)); distribution as for
-// lamina_tilted_normal. footprint: the pixel's width in cells. The cell's value and colour are uniform, so a pixel over
-// many cells averages them to 1/2: they fade to 1/2, fully kept up to half a cell per pixel and
-// gone from two cells on (about 4 cells in the pixel, whose mean deviates from 1/2 by a standard
-// deviation of 0.29 / 2). The distances and the normal stay point samples.
+// lamina_tilted_normal. footprint: the pixel's width in cells. A pixel over many cells should show
+// their mean, not whichever cell its centre hits (which flickers as the surface moves), so the
+// cell's attributes fade to their means over the pattern: fully kept up to half a cell per pixel,
+// gone from two cells on (about 4 cells in the pixel); the coverage is 1 - kept. The value and
+// colour are uniform and fade to 1/2. The normal fades to the mean normal (0, 0, L) with
+// L = 2 / (2 + m^2), which lamina_widened_slope reads as a slope variance of m^2 added to the lobe
+// it tilts: the cells' slope distribution convolved into the lobe (to first order in m^2, L is
+// the mean of cos theta over the cells, 1 - m^2 / 2). The distances stay point samples.
 LAMINA_FN LaminaVoronoi lamina_voronoi_cell(vec3 p, bool three_d, float jitter, uint seed, float tilt_deg,
                                             int distribution, float footprint) {
   ivec3 cell = ivec3(0);
@@ -252,9 +257,11 @@ LAMINA_FN LaminaVoronoi lamina_voronoi_cell(vec3 p, bool three_d, float jitter, 
   vec4 random_value = vec4(0.0f);
   vec2 u = lamina_cell_randoms(cell, seed, random_value);
   float kept = clamp((2.0f - footprint) / 1.5f, 0.0f, 1.0f);
+  float m = tan(tilt_deg * LAMINA_PI / 180.0f);
   r.value = mix(0.5f, random_value.x, kept);
   r.colour = mix(vec3(0.5f), vec3(random_value.y, random_value.z, random_value.w), kept);
-  r.normal = lamina_tilted_normal(u, tan(tilt_deg * LAMINA_PI / 180.0f), distribution);
+  r.normal = mix(vec3(0.0f, 0.0f, 2.0f / (2.0f + m * m)), lamina_tilted_normal(u, m, distribution), kept);
+  r.coverage = 1.0f - kept;
   return r;
 }
 

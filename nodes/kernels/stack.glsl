@@ -188,8 +188,10 @@ const int LAMINA_SUBSTRATE = 2;  // an opaque base
 
 // A mix's model: where its weight comes from.
 const int LAMINA_MIX_LINEAR = 0;  // the weight input, scalars.x
-// One step of a select's chain (nodes/select.cpp): 1 where the index scalars.x reaches the
-// threshold scalars.y, else 0, so that the chain shows exactly one of its stacks.
+// One step of a select's chain (nodes/select.cpp): its weight is lamina_select_weight of the index
+// scalars.x, the step's threshold scalars.y, the coverage scalars.z and the select's stack count
+// scalars.w, so that the chain shows one of its stacks, or all of them in proportion where the
+// pixel covers many cells.
 const int LAMINA_MIX_SELECT = 1;
 
 // A layer's interface model.
@@ -223,12 +225,16 @@ struct LaminaEntry {
 //   colour0  lambert, oren_nayar: albedo; conductor: n (absolute)
 //   colour1  conductor: k (absolute)
 //   colour2  layer: the medium's absorption per micrometre
-//   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, oren_nayar's sigma;
-//            y: roughness (layer, conductor; an angle or a slope, per `degrees`);
-//            z: a layer's medium thickness in micrometres
+//   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, a select's index,
+//               oren_nayar's sigma;
+//            y: roughness (layer, conductor; an angle or a slope, per `degrees`); a select step's
+//               threshold;
+//            z: a layer's medium thickness in micrometres; a select's coverage;
+//            w: a select's stack count
 //   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
 //            (tangent space, +z the surface's own normal; a mix's stays (0, 0, 1)); not unit:
-//            lamina_stack_resolve normalises it (lamina_entry_normal)
+//            lamina_stack_resolve normalises it (lamina_entry_normal), and a length below 1
+//            widens the entry's lobe (lamina_widened_slope)
 struct LaminaInputs {
   vec3 colour0;
   vec3 colour1;
@@ -990,6 +996,41 @@ LAMINA_FN vec3 lamina_forward_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
 const float LAMINA_MIN_NORMAL_Z = 0.05f;
 LAMINA_FN vec3 lamina_entry_normal(vec3 n) { return normalize(vec3(n.x, n.y, max(n.z, LAMINA_MIN_NORMAL_Z))); }
 
+// A filtered normal widens the lobe. A texture that averages its normals over a pixel's footprint
+// returns their mean, shorter than 1 where they differ; Toksvig ("Mipmapping Normal Maps", JGT
+// 10(3), 2005, sec. 3) reads the variance of their slopes from its length L as (1 - L) / L and
+// widens a Blinn-Phong exponent s to s / (1 + s (1 - L) / L), i.e. 1 / s grows by (1 - L) / L.
+// A slope m corresponds to 1 / s = m^2 / 2 (Walter et al. 2007, sec. 5.2, alpha_p = 2 / m^2 - 2
+// for small m), so the slope becomes sqrt(m^2 + 2 (1 - L) / L): slope variances add, as for two
+// Gaussian slope distributions convolved. A normal of length 1 or more is a direction and leaves
+// m as it is; at 2/3 and below the slope is 1, the most lamina's lobes take (L is read from 0.5
+// up, and NaN as 0.5). m is the slope after Elek's clamp: the spread of the facets' orientations
+// adds to the lobe the entry shows, however its own slope came about.
+LAMINA_FN float lamina_widened_slope(float m, vec3 normal) {
+  float len = length(normal);
+  float l = len > 0.5f ? len : 0.5f;
+  return len >= 1.0f ? m : min(sqrt(m * m + 2.0f * (1.0f - l) / l), 1.0f);
+}
+
+// A select's step k (nodes/select.cpp) in a chain over `count` stacks, at `threshold` k + 1: the
+// share of what reaches it that goes on to the stacks after stack k. With coverage c, the share of
+// stack j is (1 - c) where j = floor(index) (index clamped to [0, count - 1]) plus c / count: c = 0
+// shows the one stack the index names, c = 1 every stack alike, the mean over a pixel that covers
+// many cells whose uniform values the index spreads over [0, count) (texture/voronoi's coverage).
+// Such an index faded with its value towards the middle, count / 2 + (1 - c) (cell's - count / 2)
+// (lamina_voronoi_cell); the cell's own is read back from it. The step's weight is
+// P(stack > k) / P(stack >= k); 0 or 1 exactly when c = 0.
+LAMINA_FN float lamina_select_weight(float faded_index, float threshold, float count, float coverage) {
+  float c = clamp(coverage, 0.0f, 1.0f);
+  float middle = 0.5f * count;
+  float index = c > 0.0f && c < 1.0f ? max(middle + (faded_index - middle) / (1.0f - c), 0.0f) : faded_index;
+  float k = threshold - 1.0f;
+  float up_to = (index < threshold ? 1.0f - c : 0.0f) + c * threshold / count;  // P(stack <= k)
+  float before = (index < k ? 1.0f - c : 0.0f) + c * k / count;                 // P(stack < k)
+  float reaching = 1.0f - before;
+  return reaching > 0.0f ? clamp((1.0f - up_to) / reaching, 0.0f, 1.0f) : (index >= threshold ? 1.0f : 0.0f);
+}
+
 // Tangents completing a frame around the unit normal n (z > 0): Duff et al. 2017, "Building an
 // orthonormal basis, revisited", eq. (3) with sign +1. For n = (0, 0, 1) they are (1, 0, 0) and
 // (0, 1, 0) exactly, so turning into and out of the frame changes no bit.
@@ -1000,15 +1041,20 @@ LAMINA_FN void lamina_entry_tangents(vec3 n, LAMINA_OUT(vec3) x, LAMINA_OUT(vec3
   y = vec3(b, 1.0f + n.y * n.y * a, -n.y);
 }
 
+// Whether the entry whose parameters are p is untilted: its normal is (0, 0, 1) exactly (the
+// resolved normal is unit), and its frame the identity. The reference solver, which walks flat
+// boundaries only, asks the same (cpu::tilted_entry).
+LAMINA_FN bool lamina_entry_flat(LAMINA_IN(LaminaParams) p) { return p.normal.x == 0.0f && p.normal.y == 0.0f; }
+
 // A direction in the shading frame turned into the frame of the entry whose parameters are p, and back.
-// An untilted entry's frame is the identity: its turns are skipped (the normal is (0, 0, 1)
-// exactly then; the same for every point of a material whose normals are not textured).
+// An untilted entry's turns are skipped (the same for every point of a material whose normals are
+// not textured).
 LAMINA_FN vec3 lamina_to_entry(LAMINA_IN(LaminaParams) p, vec3 w) {
-  if (p.normal.x == 0.0f && p.normal.y == 0.0f) return w;
+  if (lamina_entry_flat(p)) return w;
   return vec3(dot(w, p.frame_x), dot(w, p.frame_y), dot(w, p.normal));
 }
 LAMINA_FN vec3 lamina_from_entry(LAMINA_IN(LaminaParams) p, vec3 w) {
-  if (p.normal.x == 0.0f && p.normal.y == 0.0f) return w;
+  if (lamina_entry_flat(p)) return w;
   return w.x * p.frame_x + w.y * p.frame_y + w.z * p.normal;
 }
 
@@ -1090,20 +1136,23 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     if (kind == LAMINA_LAYER) {
       p.ior = inputs[i].scalars.x;
       p.eta = p.ior / p.n_above;
-      p.m = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      p.m = lamina_widened_slope(own, inputs[i].normal);
       if (entries[i].medium == LAMINA_MEDIUM_ABSORBING) {
         p.absorption = inputs[i].colour2;
         p.thickness = inputs[i].scalars.z;
       }
     } else if (kind == LAMINA_MIX) {
       bool chained = entries[i].model == LAMINA_MIX_SELECT;
-      p.weight = chained ? (inputs[i].scalars.x >= inputs[i].scalars.y ? 1.0f : 0.0f) : inputs[i].scalars.x;
+      vec4 x = inputs[i].scalars;
+      p.weight = chained ? lamina_select_weight(x.x, x.y, x.w, x.z) : x.x;
     } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one);
       // n stays above 0.001, where the Fresnel equations stay finite.
       p.n = max(inputs[i].colour0, vec3(1.0e-3f)) / p.n_above;
       p.k = inputs[i].colour1 / p.n_above;
-      p.m = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      p.m = lamina_widened_slope(own, inputs[i].normal);
     } else {
       p.albedo = inputs[i].colour0;
       p.sigma = inputs[i].scalars.x;

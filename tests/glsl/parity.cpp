@@ -109,13 +109,17 @@ std::vector<Query> make_queries() {
   return q;
 }
 
-// A query's shading context: its uv, and a world-space position that moves with it, so that
-// textures over position (procedural noise, Voronoi cells, marble in 3D) vary across the queries
-// as those over uv do. The harness computes the same position in GLSL (lamina_q_context).
+// A query's shading context: its uv, a world-space position that moves with it, so that textures
+// over position (procedural noise, Voronoi cells, marble in 3D) vary across the queries as those
+// over uv do, and a footprint from 0 (on the diagonal u = v) to 0.55 uv, so that the filtered
+// textures (noise octaves, marble stripes, Voronoi cells fading to their means and the stacks that
+// read them) are compared from point samples to full filtering. The harness computes the same
+// context in GLSL (lamina_q_context).
 ShadingContext query_context(vec2 uv) {
   ShadingContext ctx;
   ctx.uv = uv;
   ctx.position = vec3(3.25f * uv.x - 0.5f, 2.5f * uv.y + 0.25f, 0.75f * (uv.x - uv.y));
+  ctx.footprint = 0.25f * std::abs(uv.x - uv.y);
   return ctx;
 }
 
@@ -134,6 +138,7 @@ layout(location = 2) out vec4 o_sample_f;
 LaminaContext lamina_q_context(vec2 uv) {
   LaminaContext ctx = lamina_context(uv);
   ctx.position = vec3(3.25f * uv.x - 0.5f, 2.5f * uv.y + 0.25f, 0.75f * (uv.x - uv.y));
+  ctx.footprint = 0.25f * abs(uv.x - uv.y);
   return ctx;
 }
 void main() {

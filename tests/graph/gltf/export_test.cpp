@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "graph/compile.h"
 #include "graph/gltf/export.h"
+#include "graph/gltf/fallback.h"
 #include "graph/json_write.h"
 #include "graph/load.h"
 #include "test_support.h"
@@ -219,6 +221,45 @@ TEST_CASE("glTF export: textured materials get baked fallback textures, uniform 
   CHECK(cj["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["index"] == 0);
 }
 
+TEST_CASE("glTF export: a material bakes at twice its finest detail over uv, a power of two from 64 to 512") {
+  auto program_of = [](const std::string& name) {
+    const std::filesystem::path file = test::source_dir() / "examples/materials" / name;
+    CheckedFile checked = check_file(file);
+    REQUIRE(checked.ok());
+    return compile(*checked.graphs[0], file.string());
+  };
+  // Each case's finest detail worked out from the file: 2 x detail, rounded up to a power of two.
+  struct Case {
+    const char* file;
+    double detail;  // features per uv unit
+  };
+  const Case cases[] = {
+      {"checker_tiles.json", 8.0},                    // 8 x 8 checks
+      {"patina_map_copper.json", 256.0},              // a 256 x 256 mask, tiled once
+      {"procedural_patina_copper.json", 6.0 * 16.0},  // 6 cells, 5 octaves of lacunarity 2
+      {"sunstone.json", 600.0},                       // 600 cells, capped
+      {"flake_car_paint.json", 1000.0},               // 1000 flakes, capped
+      {"car_paint.json", 0.0},                        // untextured: the smallest
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.file);
+    int expected = gltf::kMinAutoBakeSize;
+    while (expected < gltf::kMaxAutoBakeSize && expected < 2.0 * c.detail) expected *= 2;
+    CHECK(gltf::auto_bake_size(program_of(c.file)) == expected);
+  }
+  // The size the fallback used, and an explicit one instead.
+  gltf::FallbackOptions options;
+  options.max_states = 2;
+  options.bake_size = 0;
+  CHECK(gltf::fit_fallback(program_of("checker_tiles.json"), options).bake_size == 64);
+  options.bake_size = 8;
+  const gltf::Fallback fixed = gltf::fit_fallback(program_of("checker_tiles.json"), options);
+  CHECK(fixed.bake_size == 8);
+  REQUIRE(fixed.base_color.has_value());
+  CHECK(fixed.base_color->size == 8);
+  CHECK(gltf::fit_fallback(program_of("car_paint.json"), options).bake_size == 0);  // nothing to bake
+}
+
 TEST_CASE("glTF export: the showcase has a node per object, camera, light and label, in that order") {
   Diagnostics d;
   Scene scene = read_scene_file(test::source_dir() / "examples/showcase.json", d);
@@ -242,7 +283,7 @@ TEST_CASE("glTF export: the showcase has a node per object, camera, light and la
   CHECK(j["nodes"][3]["name"] == "acrylic_lacquer");
   CHECK(j["nodes"][3 + spheres]["name"] == "floor");
   CHECK(j["nodes"][4 + spheres]["name"] == "acrylic_lacquer label");
-  CHECK(j["nodes"][3 + objects + spheres - 1]["name"] == "sugar label");
+  CHECK(j["nodes"][3 + objects + spheres - 1]["name"] == scene.objects[spheres - 1].name + " label");
   CHECK(out.notes.empty());
 }
 

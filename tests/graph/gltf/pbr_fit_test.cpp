@@ -299,8 +299,9 @@ TEST_CASE("fit_pbr fits every texture state of every bundled example within its 
     const gltf::Fallback fallback = gltf::fit_fallback(program, options);
     REQUIRE_FALSE(fallback.states.empty());
     for (const auto& state : fallback.states) {
-      ShadingContext ctx;
+      ShadingContext ctx;  // the state's texel, filtered over it as the bake is
       ctx.uv = state.uv;
+      if (fallback.bake_size > 0) ctx.footprint = 1.0f / float(fallback.bake_size);
       const bool conductor = reaches_conductor(program, material.texture_registers(ctx), 0);
       const gltf::FitResult& fit = state.fit;
       const PbrParams& p = fit.params;
