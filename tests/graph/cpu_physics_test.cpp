@@ -475,15 +475,16 @@ TEST_CASE("Evaluator::albedo agrees with an adaptive quadrature of f cos") {
   std::vector<std::vector<double>> differences(examples().size());
   test::parallel_for(examples().size(), [&](size_t index) {
     const Example& example = examples()[index];
-    ShadingContext ctx = at_uv(probe_uvs(example).front());
+    // One point, its stack resolved once (a textured example's would be per evaluation).
+    const cpu::ShadingPoint point = example.evaluator.bind(at_uv(probe_uvs(example).front()));
     for (double theta : angles) {
       vec3 wo = glm::normalize(test::to_float(test::spherical(test::radians(theta), 0.0)));
-      vec3 fast = example.evaluator.albedo(ctx, wo);
+      vec3 fast = point.albedo(wo);
       double difference = 0.0;
       for (int c = 0; c < 3; ++c) {
         auto density = [&](const dvec3& w) -> double {
           if (w.z <= 0.0) return 0.0;
-          return double(example.evaluator.eval(ctx, test::to_float(w), wo)[c]) * w.z;
+          return double(point.eval(test::to_float(w), wo)[c]) * w.z;
         };
         test::SphericalQuadrature q(density, test::Frame(), {test::mirror(test::to_double(wo))}, 1.0e5);
         double albedo = 0.0;
@@ -764,13 +765,17 @@ const SamplingRun& sampling_run() {
     const long n = 1000000 / test::kSanitizerDivisor;
     for (const Example& example : examples()) {
       std::vector<vec2> uvs = sampling_uvs(example);
-      // 10^6 samples at phi = 0; the model is isotropic, so a second azimuth only checks that
+      // 10^6 samples at phi = 0 at 0, 45 and 85 degrees (with 30 and 60 until the suite outgrew
+      // CI's half hour); the model is isotropic, so a second azimuth only checks that
       // sampling handles one, with fewer samples to keep the run short. A textured example's
       // second uv at two angles. Under the sanitisers, which look for memory errors more than for
-      // statistics, two of the four angles.
+      // statistics, one case per material at 85 degrees, where refraction and total internal
+      // reflection are busiest (the quadratures of the expected counts, not the draws, take the
+      // time, and under the sanitisers they took 10 minutes for all cases).
       const std::vector<double> thetas =
-          test::kSanitized ? std::vector<double>{30.0, 85.0} : std::vector<double>{0.0, 30.0, 60.0, 85.0};
+          test::kSanitized ? std::vector<double>{85.0} : std::vector<double>{0.0, 45.0, 85.0};
       for (double theta : thetas) r.cases.push_back({&example, theta, 0.0, uvs[0], n});
+      if (test::kSanitized) continue;
       r.cases.push_back({&example, 60.0, 131.0, uvs[0], n / 4});
       for (size_t k = 1; k < uvs.size(); ++k)
         for (double theta : {30.0, 85.0}) r.cases.push_back({&example, theta, 0.0, uvs[k], n});
