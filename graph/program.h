@@ -4,6 +4,9 @@
 // read it, from any thread.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/glm.hpp>
 #include <limits>
 #include <memory>
@@ -43,8 +46,14 @@ struct InputRef {
   std::string parameter;  // comments after them
 
   bool linked() const { return slot >= 0; }
-  // The largest value its first component can take: the constant, or the top of a link's range.
-  float largest() const { return linked() ? hi : constant.x; }
+  // The largest magnitude any of its `size` components can take: the constant's, or the top of a
+  // link's range.
+  float largest() const {
+    if (linked()) return hi;
+    float m = std::abs(constant.x);
+    for (int c = 1; c < size && c < 3; ++c) m = std::max(m, std::abs(constant[c]));
+    return m;
+  }
 };
 
 // One texture or math node at a shading point: its behaviour (NodeDecl::run on the CPU,

@@ -42,6 +42,8 @@ std::string space_footprint(int space, glsl::OpWriter& w) {
   return "lamina_space_footprint(" + w.context("footprint") + ", " + std::to_string(space) + ")";
 }
 
+float space_uv_detail(const TextureOp& op) { return op.choices[0] == 0 ? op.inputs[0].largest() : 0.0f; }
+
 std::string seed_literal(int seed) { return std::to_string(static_cast<unsigned>(seed)) + "u"; }
 
 }  // namespace lamina

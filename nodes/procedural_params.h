@@ -27,6 +27,10 @@ void add_seed_param(NodeDecl& decl);
 // The footprint a node of `space` filters over, as GLSL: lamina_space_footprint of the context's.
 std::string space_footprint(int space, glsl::OpWriter& w);
 
+// The uv detail (NodeDecl::uv_detail) of a node whose lowering puts `space` first among its choices
+// and `scale` first among its inputs: scale features per uv unit over uv, 0 over position.
+float space_uv_detail(const TextureOp& op);
+
 // The GLSL literal of a seed (an unsigned integer) as the node's lowering stored it.
 std::string seed_literal(int seed);
 

@@ -29,10 +29,7 @@ static void emit_checker(const TextureOp& op, glsl::OpWriter& w) {
 }
 
 // Checks per uv unit along the finer axis.
-static float uv_detail_checker(const TextureOp& op) {
-  const InputRef& scale = op.inputs[2];
-  return scale.linked() ? scale.hi : std::max(std::abs(scale.constant.x), std::abs(scale.constant.y));
-}
+static float uv_detail_checker(const TextureOp& op) { return op.inputs[2].largest(); }
 
 NodeDecl declare_texture_checker() {
   NodeDecl d;

@@ -30,9 +30,6 @@ static void emit_flakes(const TextureOp& op, glsl::OpWriter& w) {
            "lamina_flake_normal(" + p + ", " + seed_literal(op.choices[1]) + ", " + w.context("view_distance") + ")");
 }
 
-// Cells per uv unit.
-static float uv_detail_flakes(const TextureOp& op) { return op.choices[0] == 0 ? op.inputs[0].largest() : 0.0f; }
-
 NodeDecl declare_texture_flakes() {
   NodeDecl d;
   d.type = "texture/flakes";
@@ -46,7 +43,7 @@ NodeDecl declare_texture_flakes() {
   d.lower = lower_flakes;
   d.run = run_flakes;
   d.emit_glsl = emit_flakes;
-  d.uv_detail = uv_detail_flakes;
+  d.uv_detail = space_uv_detail;  // flakes per uv unit
   d.varies = true;
   return d;
 }

@@ -90,9 +90,7 @@ static void emit_image(const TextureOp& op, glsl::OpWriter& w) {
 // Texels per uv unit: the image's larger side times the larger tiling factor.
 static float uv_detail_image(const TextureOp& op) {
   if (!op.image) return 0.0f;
-  const InputRef& scale = op.inputs[1];
-  const float tiling = scale.linked() ? scale.hi : std::max(std::abs(scale.constant.x), std::abs(scale.constant.y));
-  return float(std::max(op.image->width, op.image->height)) * tiling;
+  return float(std::max(op.image->width, op.image->height)) * op.inputs[1].largest();
 }
 
 NodeDecl declare_texture_image() {

@@ -44,7 +44,7 @@ static void emit_marble(const TextureOp& op, glsl::OpWriter& w) {
 // and the stripes along u or v (stripes times the direction's component).
 static float uv_detail_marble(const TextureOp& op) {
   if (op.choices[0] != 0) return 0.0f;
-  const float turbulence = op.inputs[0].largest() * std::pow(op.inputs[4].largest(), float(op.choices[1] - 1));
+  const float turbulence = space_uv_detail(op) * std::pow(op.inputs[4].largest(), float(op.choices[1] - 1));
   const glm::vec3 direction = op.inputs[1].linked() ? glm::vec3(1.0f) : glm::abs(op.inputs[1].constant);
   return std::max(turbulence, op.inputs[2].largest() * std::max(direction.x, direction.y));
 }

@@ -42,8 +42,7 @@ static void emit_noise(const TextureOp& op, glsl::OpWriter& w) {
 
 // The highest octave's cells per uv unit: scale lacunarity^(octaves - 1).
 static float uv_detail_noise(const TextureOp& op) {
-  if (op.choices[0] != 0) return 0.0f;
-  return op.inputs[0].largest() * std::pow(op.inputs[1].largest(), float(op.choices[1] - 1));
+  return space_uv_detail(op) * std::pow(op.inputs[1].largest(), float(op.choices[1] - 1));
 }
 
 NodeDecl declare_texture_noise() {

@@ -52,9 +52,6 @@ static void emit_voronoi(const TextureOp& op, glsl::OpWriter& w) {
   w.output(op, 6, v + ".coverage");
 }
 
-// Cells per uv unit.
-static float uv_detail_voronoi(const TextureOp& op) { return op.choices[0] == 0 ? op.inputs[0].largest() : 0.0f; }
-
 NodeDecl declare_texture_voronoi() {
   NodeDecl d;
   d.type = "texture/voronoi";
@@ -95,7 +92,7 @@ NodeDecl declare_texture_voronoi() {
   d.lower = lower_voronoi;
   d.run = run_voronoi;
   d.emit_glsl = emit_voronoi;
-  d.uv_detail = uv_detail_voronoi;
+  d.uv_detail = space_uv_detail;  // cells per uv unit
   d.varies = true;
   return d;
 }

@@ -539,6 +539,15 @@ TEST_CASE("lamina gltf: bad output names, invalid inputs and a missing file exit
   CHECK(r.err.find("tests/data/bad/cycle_two_layers.json:/materials/0") != std::string::npos);
   r = test::run_cli("gltf no_such_file.json -o " + (dir.path() / "none.glb").string(), test::source_dir());
   CHECK(r.exit_code == 1);
+  // --bake-size: 0 (per material) or 1 to 4096.
+  for (const char* size : {"-1", "4097"}) {
+    CAPTURE(size);
+    r = test::run_cli("gltf examples/materials/checker_tiles.json --bake-size " + std::string(size) + " -o " +
+                          (dir.path() / "tiles.glb").string(),
+                      test::source_dir());
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--bake-size") != std::string::npos);
+  }
   CHECK(std::filesystem::is_empty(dir.path()));
 
   r = test::run_cli(
