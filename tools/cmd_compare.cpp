@@ -103,13 +103,13 @@ int run_compare(const CompareCliOptions& o) {
   if (int code = refuse_tilted(o.material, *evaluator, point); code != kExitOk) return code;
   const cpu::Comparison c = cpu::compare_to_reference(point, {o.albedo_walks, o.slice_walks, o.seed});
   if (!o.plot.empty()) {
-    OIIO::ImageBuf image = figure_image(figure);
+    plot::Canvas canvas = figure_canvas(figure);
     const plot::ComparisonSource source{o.material.file, ctx->uv, o.albedo_walks, o.slice_walks};
-    if (!plot::draw_comparison(image, *evaluator, c, source, figure.fonts)) {
-      print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + image.geterror());
+    if (std::string why = plot::draw_comparison(canvas, *evaluator, c, source, figure.fonts); !why.empty()) {
+      print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + why);
       return kExitIo;
     }
-    if (int code = write_figure(image, figure, "lamina compare of " + evaluator->program().name); code != kExitOk)
+    if (int code = write_figure(canvas, figure, "lamina compare of " + evaluator->program().name); code != kExitOk)
       return code;
   }
   if (o.json)

@@ -43,12 +43,14 @@ int run_plot(const PlotOptions& o) {
   if (int code = load_material(o.material, evaluator); code != kExitOk) return code;
   if (int code = check_outputs({figure.path}); code != kExitOk) return code;  // before the drawing
 
-  OIIO::ImageBuf image = figure_image(figure);
-  if (!plot::draw_figure(image, *evaluator, o.material.file, figure.fonts, glm::vec2((*uv)[0], (*uv)[1]), o.ambient)) {
-    print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + image.geterror());
+  plot::Canvas canvas = figure_canvas(figure);
+  if (std::string why = plot::draw_figure(canvas, *evaluator, o.material.file, figure.fonts,
+                                          glm::vec2((*uv)[0], (*uv)[1]), o.ambient);
+      !why.empty()) {
+    print_problem("cannot draw the labels with " + figure.fonts.regular + ": " + why);
     return kExitIo;
   }
-  return write_figure(image, figure, "lamina plot of " + evaluator->program().name);
+  return write_figure(canvas, figure, "lamina plot of " + evaluator->program().name);
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 #include "tools/figure_file.h"
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
 
+#include "graph/file_access.h"
+#include "graph/image_codec.h"
 #include "tools/commands.h"
 #include "tools/plot_canvas.h"
 
@@ -19,9 +20,14 @@ int prepare_figure(const std::string& option, const std::string& path, int width
   std::string format = std::filesystem::path(path).extension().string();
   if (!format.empty()) format.erase(0, 1);
   std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (format.empty() || !OIIO::ImageOutput::create(format)) {
-    print_problem(option + ": cannot tell an image format from '" + path + "' (name the file e.g. plot.png)");
-    return kExitInvalid;
+  try {
+    if (format.empty() || !image_codec().writes(format)) {
+      print_problem(option + ": cannot tell an image format from '" + path + "' (name the file e.g. plot.png)");
+      return kExitInvalid;
+    }
+  } catch (const IoError& e) {
+    print_problem(e.what());
+    return kExitIo;
   }
   figure.fonts = plot::find_fonts();
   if (!plot::fonts_usable(figure.fonts)) {
@@ -35,17 +41,17 @@ int prepare_figure(const std::string& option, const std::string& path, int width
   return kExitOk;
 }
 
-OIIO::ImageBuf figure_image(const FigureFile& figure) {
-  return OIIO::ImageBuf(OIIO::ImageSpec(figure.width, figure.width / 2, 3, OIIO::TypeDesc::FLOAT));
+plot::Canvas figure_canvas(const FigureFile& figure) {
+  return plot::Canvas(figure.width, figure.width / 2, glm::vec3(0.0f));
 }
 
-int write_figure(OIIO::ImageBuf& image, const FigureFile& figure, const std::string& description) {
-  image.specmod().attribute("oiio:ColorSpace", "sRGB");
-  image.specmod().attribute("ImageDescription", description);
+int write_figure(plot::Canvas& canvas, const FigureFile& figure, const std::string& description) {
   // Encoded in memory, then written by the one writer: complete or absent, never over an input.
   std::vector<unsigned char> encoded;
-  if (!plot::encode_image(image, figure.format, encoded)) {
-    print_problem("cannot encode " + figure.path + ": " + image.geterror());
+  const std::string why = plot::encode_image(canvas, figure.format,
+                                             {{"oiio:ColorSpace", "sRGB"}, {"ImageDescription", description}}, encoded);
+  if (!why.empty()) {
+    print_problem("cannot encode " + figure.path + ": " + why);
     return kExitIo;
   }
   return write_outputs({{figure.path, std::string(encoded.begin(), encoded.end())}});

@@ -3,7 +3,6 @@
 // written by the one writer, complete or absent.
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
 #include <string>
 
 #include "tools/plot_text.h"
@@ -25,10 +24,10 @@ struct FigureFile {
 // writes, and finds the fonts; prints the problem and returns its exit code otherwise.
 int prepare_figure(const std::string& option, const std::string& path, int width, FigureFile& figure);
 
-// The image to draw on: width x width / 2, 3 float channels.
-OIIO::ImageBuf figure_image(const FigureFile& figure);
+// The canvas to draw on: width x width / 2.
+plot::Canvas figure_canvas(const FigureFile& figure);
 
-// Encodes `image` (display sRGB) with `description` and writes it; an exit code.
-int write_figure(OIIO::ImageBuf& image, const FigureFile& figure, const std::string& description);
+// Encodes `canvas` (display sRGB) with `description` and writes it; an exit code.
+int write_figure(plot::Canvas& canvas, const FigureFile& figure, const std::string& description);
 
 }  // namespace lamina::cli

@@ -1,21 +1,29 @@
 #include <embree3/rtcore_config.h>
 
-#include <OpenImageIO/oiioversion.h>
 #include <csignal>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "graph/diagnostics.h"
+#include "graph/file_access.h"
+#include "graph/image_codec.h"
 #include "tools/commands.h"
 
 namespace {
 
-// What --version prints: lamina's version and the libraries this build was compiled against.
+// What --version prints: lamina's version and the libraries this build was compiled against, with
+// OpenImageIO as the image module runs it (loaded for this alone: no other command pays for it).
 std::string version_text() {
-  return std::string("lamina ") + LAMINA_VERSION +
-         "\nbuilt with Embree " RTC_VERSION_STRING ", OpenImageIO " OIIO_VERSION_STRING ", nlohmann-json " +
-         std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." + std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." +
-         std::to_string(NLOHMANN_JSON_VERSION_PATCH) + ", CLI11 " CLI11_VERSION;
+  std::string oiio;
+  try {
+    oiio = "OpenImageIO " + lamina::image_codec().version();
+  } catch (const lamina::IoError& e) {
+    oiio = std::string("no OpenImageIO: ") + e.what();
+  }
+  return std::string("lamina ") + LAMINA_VERSION + "\nbuilt with Embree " RTC_VERSION_STRING ", " + oiio +
+         ", nlohmann-json " + std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." +
+         std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." + std::to_string(NLOHMANN_JSON_VERSION_PATCH) +
+         ", CLI11 " CLI11_VERSION;
 }
 
 // CLI11 reports a word that names no command as "A subcommand is required"; name it instead,
@@ -43,7 +51,7 @@ int main(int argc, char** argv) {
   // rather than kill the process half way through an output.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"lamina: physically plausible layered materials", "lamina"};
-  app.set_version_flag("--version", version_text());
+  app.set_version_flag("--version", version_text);
   app.require_subcommand(1);
   Runner runner;
   add_validate(app, runner);

@@ -1,8 +1,9 @@
 #include "tools/plot_canvas.h"
 
-#include <OpenImageIO/filesystem.h>
 #include <algorithm>
 #include <cmath>
+
+#include "graph/file_access.h"
 
 namespace lamina::cli::plot {
 
@@ -51,12 +52,14 @@ void Canvas::add_polyline(const std::vector<glm::vec2>& points, float line_width
     }
 }
 
-bool encode_image(OIIO::ImageBuf& image, const std::string& format, std::vector<unsigned char>& encoded) {
-  OIIO::Filesystem::IOVecOutput proxy(encoded);
-  image.set_write_ioproxy(&proxy);
-  bool ok = image.write("plot." + format, OIIO::TypeDesc::UINT8, format);
-  image.set_write_ioproxy(nullptr);
-  return ok;
+std::string encode_image(Canvas& canvas, const std::string& format,
+                         const std::vector<std::pair<std::string, std::string>>& metadata,
+                         std::vector<unsigned char>& encoded) {
+  try {
+    return image_codec().encode(format, canvas.view(), metadata, encoded);
+  } catch (const IoError& e) {
+    return e.what();
+  }
 }
 
 }  // namespace lamina::cli::plot

@@ -2,10 +2,12 @@
 // (filled rectangles and anti-aliased polylines), and the encoding of the finished image.
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "graph/image_codec.h"
 
 namespace lamina::cli::plot {
 
@@ -21,6 +23,11 @@ class Canvas {
   int height() const { return h_; }
   glm::vec3& at(int x, int y) { return rgb_[size_t(y) * size_t(w_) + size_t(x)]; }
   const std::vector<glm::vec3>& pixels() const { return rgb_; }
+  // The pixels as the image module draws text into them and encodes them.
+  FloatPixels view() {
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "a canvas is rows of packed RGB floats");
+    return {&rgb_.front().x, w_, h_, 3};
+  }
 
   // Sets the pixels of r that lie on the canvas to c.
   void fill(Rect r, glm::vec3 c);
@@ -33,8 +40,10 @@ class Canvas {
   std::vector<glm::vec3> rgb_;
 };
 
-// Encodes `image` as 8-bit `format` (an OpenImageIO format name such as "png") in memory. False
-// with image.geterror() set when it cannot.
-bool encode_image(OIIO::ImageBuf& image, const std::string& format, std::vector<unsigned char>& encoded);
+// Encodes `canvas` as 8-bit `format` (an OpenImageIO format name such as "png") in memory, with
+// `metadata`. Returns why it cannot, or an empty string.
+std::string encode_image(Canvas& canvas, const std::string& format,
+                         const std::vector<std::pair<std::string, std::string>>& metadata,
+                         std::vector<unsigned char>& encoded);
 
 }  // namespace lamina::cli::plot

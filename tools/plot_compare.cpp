@@ -114,11 +114,11 @@ SlicePoints reference_points(const cpu::SliceComparison& s) {
 
 }  // namespace
 
-bool draw_comparison(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const cpu::Comparison& comparison,
-                     const ComparisonSource& source, const Fonts& fonts) {
-  const int width = image.spec().width, height = image.spec().height;
+std::string draw_comparison(Canvas& canvas, const cpu::Evaluator& evaluator, const cpu::Comparison& comparison,
+                            const ComparisonSource& source, const Fonts& fonts) {
+  const int width = canvas.width(), height = canvas.height();
   Layout l{double(width) / 1600.0};
-  Canvas canvas(width, height, kFigureBackground);
+  canvas.fill({0, 0, width, height}, kFigureBackground);
 
   // The model's slices drawn densely, as lamina plot draws them; the reference's at its points.
   std::vector<Slice> slices = compute_slices(evaluator, source.uv);
@@ -139,9 +139,8 @@ bool draw_comparison(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, con
   }
   const AlbedoGeometry albedo(l, Rect{split, top, width, height}, albedo_top(comparison));
   draw_albedo_pixels(canvas, l, comparison, albedo);
-  image.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, canvas.pixels().data());
 
-  Text text(image, fonts);
+  Text text(canvas, fonts);
   for (size_t i = 0; i < slices.size(); ++i) draw_slice_labels(text, l, slices[i], geometry[i]);
   draw_albedo_labels(text, l, comparison, albedo);
 
@@ -166,9 +165,9 @@ bool draw_comparison(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, con
          text.width(intro, legend_font) + text.width(rest, legend_font) + l.px(200) > width - 2 * margin)
     --legend_font;
   text.draw(margin, legend_y, intro, legend_font, kTextDim);
-  int x = draw_channel_legend(image, text, l, margin + text.width(intro, legend_font), legend_y, legend_font);
+  int x = draw_channel_legend(canvas, text, l, margin + text.width(intro, legend_font), legend_y, legend_font);
   text.draw(x, legend_y, rest, legend_font, kTextDim);
-  return text.ok();
+  return text.error();
 }
 
 }  // namespace lamina::cli::plot

@@ -3,7 +3,6 @@
 // with error bars over them, beside the directional albedo from 0 to 89 degrees drawn the same way.
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
 #include <glm/glm.hpp>
 #include <string>
 
@@ -20,9 +19,9 @@ struct ComparisonSource {
   int64_t albedo_walks = 0, slice_walks = 0;
 };
 
-// Draws the figure over all of `image` (3 float channels, display sRGB values). Returns false when
-// a label could not be drawn (image.geterror() says why).
-bool draw_comparison(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const cpu::Comparison& comparison,
-                     const ComparisonSource& source, const Fonts& fonts);
+// Draws the figure over all of `canvas` (display sRGB values). Returns why a label could not be
+// drawn, or an empty string.
+std::string draw_comparison(Canvas& canvas, const cpu::Evaluator& evaluator, const cpu::Comparison& comparison,
+                            const ComparisonSource& source, const Fonts& fonts);
 
 }  // namespace lamina::cli::plot

@@ -1,6 +1,5 @@
 #include "tools/plot_figure.h"
 
-#include <OpenImageIO/imagebufalgo.h>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -12,15 +11,14 @@
 
 namespace lamina::cli::plot {
 
-int draw_channel_legend(OIIO::ImageBuf& image, Text& text, const Layout& l, int x, int y, int size) {
+int draw_channel_legend(Canvas& canvas, Text& text, const Layout& l, int x, int y, int size) {
   const char* names[] = {"red", "green", "blue"};
   const int swatch = l.px(22), gap = l.px(6), space = l.px(14);
   for (int c = 0; c < 3; ++c) {
     x += space;
-    float rgb[3] = {kChannel[size_t(c)].r, kChannel[size_t(c)].g, kChannel[size_t(c)].b};
     int thick = std::max(2, l.px(3));
     int mid = y - size * 3 / 10;
-    OIIO::ImageBufAlgo::fill(image, rgb, OIIO::ROI(x, x + swatch, mid - thick / 2, mid - thick / 2 + thick));
+    canvas.fill({x, mid - thick / 2, x + swatch, mid - thick / 2 + thick}, kChannel[size_t(c)]);
     x += swatch + gap;
     text.draw(x, y, names[c], size, kText);
     x += text.width(names[c], size);
@@ -28,18 +26,18 @@ int draw_channel_legend(OIIO::ImageBuf& image, Text& text, const Layout& l, int 
   return x;
 }
 
-bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
-                 glm::vec2 uv, float ambient) {
-  const int width = image.spec().width, height = image.spec().height;
+std::string draw_figure(Canvas& canvas, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
+                        glm::vec2 uv, float ambient) {
+  const int width = canvas.width(), height = canvas.height();
   Layout l{double(width) / 1600.0};
-  Canvas canvas(width, height, kFigureBackground);
+  canvas.fill({0, 0, width, height}, kFigureBackground);
 
   std::vector<Slice> slices = compute_slices(evaluator, uv);
   Decades range = value_range(slices);
   int top = l.px(92);
   int split = l.px(960);
 
-  // Draw the pixels first; text goes on top through OIIO.
+  // Draw the pixels first; text goes on top.
   Rect sphere_panel{split, top, width, height};
   canvas.fill(sphere_panel, kSphereBackground);
   Rect sphere{split + l.px(20), top + l.px(44), width - l.px(20), height - l.px(44)};
@@ -49,10 +47,9 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
 
   const std::vector<SliceGeometry> geometry = slice_grid(l, top, split, height, slices.size(), range);
   for (size_t i = 0; i < slices.size(); ++i) draw_slice_pixels(canvas, l, slices[i], geometry[i]);
-  image.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, canvas.pixels().data());
 
-  // Text on top, through OpenImageIO.
-  Text text(image, fonts);
+  // Text on top, through the image module.
+  Text text(canvas, fonts);
   for (size_t i = 0; i < slices.size(); ++i) draw_slice_labels(text, l, slices[i], geometry[i]);
 
   // Title and legend.
@@ -80,7 +77,7 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   while (legend_font > 7 && legend_width(legend_font) > width - 2 * margin) --legend_font;
   text.draw(x, legend_y, intro, legend_font, kTextDim);
   x += text.width(intro, legend_font);
-  x = draw_channel_legend(image, text, l, x, legend_y, legend_font);
+  x = draw_channel_legend(canvas, text, l, x, legend_y, legend_font);
   text.draw(x + space, legend_y, rest, legend_font, kTextDim);
 
   int centre = (sphere_panel.x0 + sphere_panel.x1) / 2;
@@ -96,7 +93,7 @@ bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const s
   else
     std::snprintf(footer, sizeof footer, "orthographic; light along (-1, 1, 1); radiance = pi f cos_i");
   text.draw(centre, height - l.px(16), footer, l.font(15), kTextDim, 0, false, panel_width);
-  return text.ok();
+  return text.error();
 }
 
 }  // namespace lamina::cli::plot

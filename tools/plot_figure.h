@@ -2,7 +2,6 @@
 // sphere (right), laid out for any width from the 1600 x 800 design.
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
 #include <glm/glm.hpp>
 #include <string>
 
@@ -11,14 +10,14 @@
 
 namespace lamina::cli::plot {
 
-// Draws the figure over all of `image` (3 float channels, display sRGB values): the slices at
-// `uv`, the sphere under a sky of radiance `ambient`, the title naming the material and `file`.
-// Returns false when a label could not be drawn (image.geterror() says why).
 // The channel key of the figures' legends ("red", "green", "blue", each after a swatch of its curve
 // colour), drawn from x on the text baseline y; returns where it ends.
-int draw_channel_legend(OIIO::ImageBuf& image, Text& text, const Layout& l, int x, int y, int size);
+int draw_channel_legend(Canvas& canvas, Text& text, const Layout& l, int x, int y, int size);
 
-bool draw_figure(OIIO::ImageBuf& image, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
-                 glm::vec2 uv, float ambient);
+// Draws the figure over all of `canvas` (display sRGB values): the slices at `uv`, the sphere
+// under a sky of radiance `ambient`, the title naming the material and `file`. Returns why a label
+// could not be drawn, or an empty string.
+std::string draw_figure(Canvas& canvas, const cpu::Evaluator& evaluator, const std::string& file, const Fonts& fonts,
+                        glm::vec2 uv, float ambient);
 
 }  // namespace lamina::cli::plot

@@ -1,7 +1,8 @@
 #include "tools/plot_text.h"
 
-#include <OpenImageIO/imagebufalgo.h>
 #include <filesystem>
+
+#include "graph/file_access.h"
 
 namespace lamina::cli::plot {
 
@@ -35,11 +36,11 @@ Fonts find_fonts() {
   return fonts;
 }
 
-bool fonts_usable(const Fonts& fonts) { return OIIO::ImageBufAlgo::text_size("lamina", 16, fonts.regular).defined(); }
+bool fonts_usable(const Fonts& fonts) { return image_codec().text_box("lamina", 16, fonts.regular).has_value(); }
 
 int Text::width(const std::string& text, int size, bool bold) const {
-  OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(text, size, bold ? fonts_.bold : fonts_.regular);
-  return roi.defined() ? roi.xend - roi.xbegin : 0;
+  const std::optional<TextBox> box = image_codec().text_box(text, size, bold ? fonts_.bold : fonts_.regular);
+  return box ? box->x1 - box->x0 : 0;
 }
 
 int Text::fit(const std::string& text, int size, int max_width, bool bold) const {
@@ -51,12 +52,9 @@ void Text::draw(int x, int y, const std::string& text, int size, glm::vec3 colou
                 int max_width) {
   if (max_width > 0) size = fit(text, size, max_width, bold);
   float c[3] = {colour.r, colour.g, colour.b};
-  auto alignx = align < 0    ? OIIO::ImageBufAlgo::TextAlignX::Left
-                : align == 0 ? OIIO::ImageBufAlgo::TextAlignX::Center
-                             : OIIO::ImageBufAlgo::TextAlignX::Right;
-  if (!OIIO::ImageBufAlgo::render_text(image_, x, y, text, size, bold ? fonts_.bold : fonts_.regular, c, alignx,
-                                       OIIO::ImageBufAlgo::TextAlignY::Baseline))
-    ok_ = false;
+  const std::string why =
+      image_codec().draw_text(canvas_.view(), x, y, text, size, bold ? fonts_.bold : fonts_.regular, c, align);
+  if (error_.empty() && !why.empty()) error_ = "'" + text + "': " + why;
 }
 
 }  // namespace lamina::cli::plot

@@ -1,12 +1,14 @@
-// The text of `lamina plot`: DejaVu fonts drawn through OpenImageIO's FreeType renderer, and the
+// The text of `lamina plot`: DejaVu fonts drawn through OpenImageIO's FreeType renderer (the image
+// module), and the
 // figure's scale, by which every length and font size of the 1600-pixel design is multiplied.
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <string>
+
+#include "tools/plot_canvas.h"
 
 namespace lamina::cli::plot {
 
@@ -22,7 +24,7 @@ bool fonts_usable(const Fonts& fonts);
 
 class Text {
  public:
-  Text(OIIO::ImageBuf& image, const Fonts& fonts) : image_(image), fonts_(fonts) {}
+  Text(Canvas& canvas, const Fonts& fonts) : canvas_(canvas), fonts_(fonts) {}
 
   // The width in pixels of `text` at `size`.
   int width(const std::string& text, int size, bool bold = false) const;
@@ -32,13 +34,13 @@ class Text {
   // max_width > 0 the size shrinks until the text fits.
   void draw(int x, int y, const std::string& text, int size, glm::vec3 colour, int align = -1, bool bold = false,
             int max_width = 0);
-  // False once any draw failed (image_.geterror() says why).
-  bool ok() const { return ok_; }
+  // Why the first draw that failed failed; empty while every one succeeded.
+  const std::string& error() const { return error_; }
 
  private:
-  OIIO::ImageBuf& image_;
+  Canvas& canvas_;
   const Fonts& fonts_;
-  bool ok_ = true;
+  std::string error_;
 };
 
 // The figure's scale against the 1600-pixel design.

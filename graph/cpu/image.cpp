@@ -1,7 +1,5 @@
 #include "graph/cpu/image.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <png.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <csetjmp>
 #include <cstring>
 
+#include "graph/image_codec.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina {
@@ -161,42 +160,7 @@ std::shared_ptr<LinearImage> decode_png(std::string_view bytes, bool srgb) {
   return image;
 }
 
-// --- every other format, through OpenImageIO reading from memory ----------------------------------
-
-// OpenImageIO keeps errors per thread until they are retrieved; one left behind is printed when
-// the program ends, so every failure takes it.
-std::string oiio_error(const OIIO::ImageInput* input) {
-  std::string why = input ? input->geterror() : std::string();
-  const std::string global = OIIO::geterror();
-  if (why.empty()) why = global;
-  while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-  for (char& c : why)
-    if (c == '\n') c = ';';
-  return why.empty() ? "decoding failed" : why;
-}
-
-// The bytes as OpenImageIO's readers see them. OpenImageIO 2.4's IOMemReader copies past its
-// buffer when asked to read at an offset beyond its end (a fuzzer found a tiled OpenEXR whose tile
-// offsets point there); this one reads nothing there. It stays an IOMemReader because the JPEG
-// reader takes the whole buffer from that class (libjpeg then stays inside it).
-class MemoryReader final : public OIIO::Filesystem::IOMemReader {
- public:
-  explicit MemoryReader(std::string_view bytes) : IOMemReader(bytes.data(), bytes.size()), bytes_(bytes) {}
-  size_t read(void* out, size_t count) override {
-    const size_t n = pread(out, count, m_pos);
-    m_pos += static_cast<std::int64_t>(n);
-    return n;
-  }
-  size_t pread(void* out, size_t count, std::int64_t offset) override {
-    if (offset < 0 || static_cast<std::uint64_t>(offset) >= bytes_.size()) return 0;
-    const size_t n = std::min(count, bytes_.size() - static_cast<size_t>(offset));
-    std::memcpy(out, bytes_.data() + offset, n);
-    return n;
-  }
-
- private:
-  std::string_view bytes_;
-};
+// --- every other format, through the image module's OpenImageIO -----------------------------------
 
 // OpenImageIO's name for the reader of a format.
 const char* oiio_reader(ImageFormat format) {
@@ -210,59 +174,51 @@ const char* oiio_reader(ImageFormat format) {
   throw ImageError("no OpenImageIO reader for " + format_name(format));
 }
 
+// Fills a LinearImage from the decoder's bands, once their size agrees with the header lamina read.
+class LinearImageSink final : public DecodeSink {
+ public:
+  LinearImageSink(const ImageHeader& header, bool srgb) : header_(header), srgb_(srgb) {}
+
+  std::string start(int width, int height, int depth, int channels) override {
+    if (depth > 1) return "the image is a volume of " + std::to_string(depth) + " slices, not a texture";
+    if (width < 0 || height < 0 || static_cast<std::uint64_t>(width) != header_.width ||
+        static_cast<std::uint64_t>(height) != header_.height)
+      return "the decoder reads " + std::to_string(width) + " x " + std::to_string(height) +
+             " pixels where the header declares " + std::to_string(header_.width) + " x " +
+             std::to_string(header_.height);
+    if (channels < 1) return "the image has no channels";
+    channels_ = std::min(channels, 4);
+    image_ = std::make_shared<LinearImage>();
+    image_->width = width;
+    image_->height = height;
+    image_->texels.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+    return {};
+  }
+
+  void rows(int y0, int y1, const float* band) override {
+    const size_t row_floats = static_cast<size_t>(image_->width) * static_cast<size_t>(channels_);
+    for (int y = y0; y < y1; ++y)
+      store_row(*image_, y, band + static_cast<size_t>(y - y0) * row_floats, channels_, srgb_);
+  }
+
+  std::shared_ptr<LinearImage> image() const { return image_; }
+
+ private:
+  const ImageHeader& header_;
+  bool srgb_;
+  int channels_ = 0;
+  std::shared_ptr<LinearImage> image_;
+};
+
 // Decodes a JPEG, OpenEXR, Radiance HDR or TIFF image whose header (read by lamina) fits the
 // budget, with that format's reader alone: OpenImageIO would otherwise try every reader it has on
 // bytes its first choice refuses.
 std::shared_ptr<LinearImage> decode_oiio(std::string_view bytes, const ImageHeader& header, bool srgb) {
-  const std::string format = format_name(header.format);
-  auto input = OIIO::ImageInput::create(oiio_reader(header.format));
-  if (!input) throw ImageError("cannot start the " + format + " decoder: " + oiio_error(nullptr));
-  MemoryReader proxy(bytes);
-  if (!input->set_ioproxy(&proxy))
-    throw ImageError("cannot start the " + format + " decoder: " + oiio_error(input.get()));
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as texture/image outputs it
-  OIIO::ImageSpec spec;
-  // The name is never opened: the reader reads the proxy.
-  if (!input->open("image", spec, config))
-    throw ImageError("not a readable " + format + " image: " + oiio_error(input.get()));
-  if (spec.depth > 1)
-    throw ImageError("the image is a volume of " + std::to_string(spec.depth) + " slices, not a texture");
-  if (spec.width < 0 || spec.height < 0 || static_cast<std::uint64_t>(spec.width) != header.width ||
-      static_cast<std::uint64_t>(spec.height) != header.height)
-    throw ImageError("the " + format + " decoder reads " + std::to_string(spec.width) + " x " +
-                     std::to_string(spec.height) + " pixels where the header declares " + std::to_string(header.width) +
-                     " x " + std::to_string(header.height));
-  if (spec.nchannels < 1) throw ImageError("the image has no channels");
-  const int channels = std::min(spec.nchannels, 4);
-  auto image = std::make_shared<LinearImage>();
-  image->width = spec.width;
-  image->height = spec.height;
-  image->texels.resize(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height));
-  // A band of rows at a time: the only copy of the whole image is the texels themselves. A tiled
-  // image is read a row of tiles at a time (OpenImageIO 2.4's read_scanlines divides by zero on
-  // tiled files).
-  const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
-  // Bands of scanlines hold up to 64 rows and about a million pixels, so the decoder's copy of
-  // them stays small beside the texels.
-  const int band_rows = std::min(spec.height, tiled ? spec.tile_height : std::clamp((1 << 20) / spec.width, 1, 64));
-  std::vector<float> band(static_cast<size_t>(spec.width) * static_cast<size_t>(band_rows) *
-                          static_cast<size_t>(channels));
-  for (int y = 0; y < spec.height; y += band_rows) {
-    const int end = std::min(spec.height, y + band_rows);
-    const bool read = tiled ? input->read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y, spec.y + end, spec.z,
-                                                spec.z + 1, 0, channels, OIIO::TypeDesc::FLOAT, band.data())
-                            : input->read_scanlines(0, 0, spec.y + y, spec.y + end, spec.z, 0, channels,
-                                                    OIIO::TypeDesc::FLOAT, band.data());
-    if (!read) throw ImageError("cannot decode the " + format + " image: " + oiio_error(input.get()));
-    for (int row = y; row < end; ++row)
-      store_row(*image, row, band.data() + static_cast<size_t>(row - y) * static_cast<size_t>(spec.width) * channels,
-                channels, srgb);
-  }
-  // Some decoders (TIFF) report a damaged file and still return rows.
-  if (input->has_error()) throw ImageError("cannot decode the " + format + " image: " + oiio_error(input.get()));
-  input->close();
-  return image;
+  const char* reader = oiio_reader(header.format);
+  LinearImageSink sink(header, srgb);
+  if (std::string why = image_codec().decode(reader, bytes, sink); !why.empty())
+    throw ImageError(format_name(header.format) + ": " + why);
+  return sink.image();
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 #include "graph/gltf/export.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>

@@ -1,13 +1,11 @@
 #include "graph/gltf/label_image.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <filesystem>
 
+#include "graph/image_codec.h"
 #include "graph/json_read.h"
 
 namespace lamina::gltf {
@@ -32,10 +30,10 @@ std::string find_font() {
       "fonts-dejavu-core)");
 }
 
-OIIO::ROI measure(const std::string& text, const std::string& font) {
-  OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(text, kFontSize, font);
-  if (!roi.defined()) throw IoError("cannot render object labels with the font " + font + ": " + OIIO::geterror());
-  return roi;
+TextBox measure(const std::string& text, const std::string& font) {
+  const std::optional<TextBox> box = image_codec().text_box(text, kFontSize, font);
+  if (!box) throw IoError("cannot render object labels with the font " + font);
+  return *box;
 }
 
 }  // namespace
@@ -44,24 +42,22 @@ LabelImage render_label(const std::string& text) {
   const std::string font = find_font();
   // The line's height from glyphs that reach the font's usual extremes, not from this text, so
   // that "ace" and "Ply" make images of the same height.
-  const OIIO::ROI line = measure("Hgjpqy|", font);
-  const OIIO::ROI ink = measure(text, font);
-  const int ascent = -line.ybegin, descent = line.yend;
+  const TextBox line = measure("Hgjpqy|", font);
+  const TextBox ink = measure(text, font);
+  const int ascent = -line.y0, descent = line.y1;
   LabelImage out;
-  out.content_width = std::max(1, ink.xend - ink.xbegin) + 2 * kPadding;
+  out.content_width = std::max(1, ink.x1 - ink.x0) + 2 * kPadding;
   out.content_height = ascent + descent + 2 * kPadding;
   out.width = static_cast<int>(std::bit_ceil(static_cast<unsigned>(out.content_width)));
   out.height = static_cast<int>(std::bit_ceil(static_cast<unsigned>(out.content_height)));
 
-  OIIO::ImageBuf coverage(OIIO::ImageSpec(out.width, out.height, 1, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::zero(coverage);
-  const float white = 1.0f;
-  if (!OIIO::ImageBufAlgo::render_text(coverage, kPadding - ink.xbegin, kPadding + ascent, text, kFontSize, font,
-                                       OIIO::cspan<float>(&white, 1)))
-    throw IoError("cannot render the label '" + text + "': " + coverage.geterror());
   const auto w = static_cast<size_t>(out.width), h = static_cast<size_t>(out.height);
-  std::vector<float> c(w * h);
-  coverage.get_pixels(OIIO::ROI(0, out.width, 0, out.height), OIIO::TypeDesc::FLOAT, c.data());
+  std::vector<float> c(w * h, 0.0f);  // the glyphs' coverage
+  const float white = 1.0f;
+  if (std::string why = image_codec().draw_text({c.data(), out.width, out.height, 1}, kPadding - ink.x0,
+                                                kPadding + ascent, text, kFontSize, font, &white, -1);
+      !why.empty())
+    throw IoError("cannot render the label '" + text + "': " + why);
 
   // The halo: the coverage dilated by a disk of radius kHalo, its rim antialiased. The disk's
   // weights are the same for every pixel: computed once.

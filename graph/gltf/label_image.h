@@ -19,7 +19,7 @@ struct LabelImage {
 };
 
 // Renders `text` (UTF-8, one line) in DejaVu Sans Bold, the font Debian's fonts-dejavu-core
-// installs, through OpenImageIO's FreeType renderer. Deterministic for a given font file. Throws
+// installs, through OpenImageIO's FreeType renderer (the image module). Deterministic for a given font file. Throws
 // IoError when the font cannot be found or used.
 LabelImage render_label(const std::string& text);
 

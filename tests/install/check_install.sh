@@ -10,7 +10,9 @@ cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -x "$work/prefix/bin/lamina"
 test -f "$work/prefix/include/lamina/graph/load.h"
 test -f "$work/prefix/share/lamina/schema/material.schema.json"
-"$work/prefix/bin/lamina" --version
+# The image module is installed beside liblamina and loads (--version asks it for OpenImageIO's).
+"$work/prefix/bin/lamina" --version | tee "$work/version.txt"
+grep -q "OpenImageIO [0-9]" "$work/version.txt"
 cmake -S "$source/examples/api" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 output=$("$work/consumer/lamina_api_example" "$source/examples/materials/car_paint.json")
