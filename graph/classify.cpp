@@ -75,10 +75,11 @@ bool collect_paths(const Graph& g, size_t at, std::vector<size_t> layers, std::v
     at = *base;
   }
   if (g.decl(at).kind == NodeKind::Mix || g.decl(at).kind == NodeKind::Select) {
-    const std::vector<size_t> below = g.stacks_below(at);
-    if (below.size() < 2) return false;
-    for (size_t stack : below)
-      if (!collect_paths(g, stack, layers, paths)) return false;
+    // Each run of a repeated stack once (Graph::stack_runs): a sparse glitter map's 15 transparent
+    // places are one way down.
+    if (g.stacks_below(at).size() < 2) return false;
+    for (const Graph::StackRun& run : g.stack_runs(at))
+      if (!collect_paths(g, run.node, layers, paths)) return false;
     return true;
   }
   paths.push_back({std::move(layers), at});

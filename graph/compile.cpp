@@ -113,9 +113,9 @@ class Compiler final : public InputSource {
 
   // The entry of stack node `i` reached from entry `parent` (side: which stack of a mix parent),
   // then its children: the stacks the node sits on or blends, in declaration order (a layer's
-  // base; a mix's a and b). A node over N > 2 stacks (a select) becomes a chain of N - 1 two-way
-  // entries: entry `part` k has stack k first and, second, entry k + 1, or for the last, stack
-  // N - 1. Returns the entry's index.
+  // base; a mix's a and b), consecutive repeats of a select's stack as one run (Graph::stack_runs).
+  // A node over N > 2 runs (a select) becomes a chain of N - 1 two-way entries: entry `part` k has
+  // run k first and, second, entry k + 1, or for the last, run N - 1. Returns the entry's index.
   int expand(size_t i, int parent, int side, int part = 0) {
     if (int(program_.stack.size()) >= kMaxStackEntries)
       throw std::logic_error("compile: the stack of '" + program_.name + "' exceeds " +
@@ -131,14 +131,14 @@ class Compiler final : public InputSource {
     decl.lower(lowering);
     const int index = int(program_.stack.size());
     program_.stack.push_back(std::move(entry));
-    const std::vector<size_t> below = g_.stacks_below(i);
+    const std::vector<Graph::StackRun> below = g_.stack_runs(i);
     const size_t k = size_t(part);
     if (below.size() > k) {
-      const int first = expand(below[k], index, 0);
+      const int first = expand(below[k].node, index, 0);
       program_.stack[size_t(index)].first = first;
     }
     if (below.size() > k + 1) {
-      const int second = below.size() > k + 2 ? expand(i, index, 1, part + 1) : expand(below[k + 1], index, 1);
+      const int second = below.size() > k + 2 ? expand(i, index, 1, part + 1) : expand(below[k + 1].node, index, 1);
       program_.stack[size_t(index)].second = second;
     }
     return index;

@@ -223,6 +223,22 @@ std::vector<size_t> Graph::stacks_below(size_t i) const {
   return below;
 }
 
+std::vector<Graph::StackRun> Graph::stack_runs(size_t i) const {
+  const std::vector<size_t> below = stacks_below(i);
+  std::vector<StackRun> runs;
+  for (size_t k = 0; k < below.size(); ++k) {
+    if (!runs.empty() && runs.back().node == below[k])
+      ++runs.back().hi;
+    else
+      runs.push_back({below[k], int(k), int(k) + 1});
+  }
+  if (runs.size() < 2 && below.size() >= 2) {
+    runs.clear();
+    for (size_t k = 0; k < below.size(); ++k) runs.push_back({below[k], int(k), int(k) + 1});
+  }
+  return runs;
+}
+
 const Value* Graph::value(size_t i, std::string_view param) const {
   if (const Value* v = material_.nodes[i].find(param)) return v;
   const ParamDecl* p = decls_[i]->find_param(param);

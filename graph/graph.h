@@ -43,6 +43,15 @@ class Graph {
   // The stacks node i sits on or blends: the nodes its given stack parameters link to, in
   // declaration order (a layer's base; a mix's a and b; a select's stack_0, stack_1, ...).
   std::vector<size_t> stacks_below(size_t i) const;
+  // The same as they compile: consecutive repeats of one stack (a select whose stack_0 to stack_2
+  // are all "@surface", the transparent cells of a sparse glitter map) are one run over the
+  // positions [lo, hi) they fill, so that the stack's entries appear once. Where that would leave
+  // fewer than two runs, every position is a run of its own (a two-way entry has two sides).
+  struct StackRun {
+    size_t node;
+    int lo, hi;
+  };
+  std::vector<StackRun> stack_runs(size_t i) const;
   // Whether node i feeds the surface, directly or indirectly (or is the surface).
   bool used(size_t i) const { return used_[i]; }
 

@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "graph/diagnostics.h"
+#include "graph/json_type.h"
 
 namespace lamina {
-
-using Json = nlohmann::ordered_json;
 
 // Parses `text`; on a syntax error, an empty file, a number beyond the double range or nesting
 // deeper than kMaxJsonDepth (checked first, before any tree is built) reports one error and

@@ -2,13 +2,12 @@
 
 #include <cstdint>
 
+#include "graph/json_type.h"
 #include "graph/limits.h"
 
 namespace lamina {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 Json number_schema(const ParamDecl& p) {
   // Every number also has a magnitude of at most kMaxNodeNumber, whatever the parameter's range.

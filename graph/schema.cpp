@@ -6,6 +6,7 @@
 
 #include "graph/diagnostics.h"
 #include "graph/document.h"
+#include "graph/json_type.h"
 #include "graph/json_write.h"
 #include "graph/limits.h"
 #include "graph/model.h"
@@ -15,8 +16,6 @@
 namespace lamina {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 // Identifiers of at most kMaxIdentifierLength (64) characters: one leading, up to 63 more.
 constexpr const char* kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]{0,63}$";

@@ -21,13 +21,14 @@ StackSize measure_stack(const Graph& graph) {
       case NodeKind::Select:
       case NodeKind::Substrate: {
         ++size.stack_nodes;
-        const std::vector<size_t> below = graph.stacks_below(i);
-        // A layer adds its interface's lobe; a select of N stacks is a chain of N - 1 entries.
+        const std::vector<Graph::StackRun> below = graph.stack_runs(i);
+        // A layer adds its interface's lobe; a select of N runs of stacks is a chain of N - 1
+        // entries, each run's stack compiled once (Graph::stack_runs).
         lobes[i] = decl.kind == NodeKind::Layer || decl.kind == NodeKind::Substrate ? 1 : 0;
         entries[i] = decl.kind == NodeKind::Select ? std::max(int(below.size()) - 1, 1) : 1;
-        for (size_t b : below) {
-          lobes[i] += lobes[b];
-          entries[i] += entries[b];
+        for (const Graph::StackRun& b : below) {
+          lobes[i] += lobes[b.node];
+          entries[i] += entries[b.node];
         }
         break;
       }

@@ -47,15 +47,17 @@ static void check_select(const NodeCheckContext& ctx) {
               "the index counts from 0; floor(index) picks the stack");
 }
 
-// Entry `part` k of the chain (compile.cpp) shows stack k where floor(index) <= k, else the entries
-// after it: its threshold is k + 1 (lamina_select_weight, which also reads the coverage and the
-// number of stacks).
+// Entry `part` k of the chain (compile.cpp) shows run k of the stacks (Graph::stack_runs: stacks
+// lo to hi - 1 when they are the same one) where floor(index) < hi, else the entries after it
+// (lamina_select_weight, which also reads the coverage and the number of stacks).
 static void lower_select(NodeLowering& n) {
   StackEntry& e = n.entry();
   e.kind = kernels::LAMINA_MIX;
   e.model = kernels::LAMINA_MIX_SELECT;
   e.scalar_x = n.input("index");
-  e.scalar_y.constant = glm::vec3(float(n.part() + 1));
+  const Graph::StackRun run = n.graph().stack_runs(n.index()).at(size_t(n.part()));
+  e.scalar_y.constant = glm::vec3(float(run.hi));
+  e.colour0.constant = glm::vec3(float(run.lo));
   e.scalar_z = n.input("coverage");
   int count = 0;
   while (count < kMaxSelectStacks && n.given(stack_param(count))) ++count;
@@ -68,7 +70,8 @@ NodeDecl declare_select() {
   d.kind = NodeKind::Select;
   d.doc =
       "one of N stacks per shading point: stack_k where floor(index) = k (index clamped to [0, N - 1]); where a "
-      "pixel covers many cells (coverage), every stack in proportion";
+      "pixel covers many cells (coverage), every stack in proportion; only the stacks shown are evaluated, and "
+      "consecutive places naming the same stack compile once";
   d.params.push_back(param("index", ValueType::Float)
                          .range(0.0, double(kMaxSelectStacks - 1))
                          .links()

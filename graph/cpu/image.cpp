@@ -1,13 +1,12 @@
 #include "graph/cpu/image.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
 
 #include "graph/image_codec.h"
+#include "graph/png_trap.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina {
@@ -29,20 +28,11 @@ void store_row(LinearImage& image, int y, const float* row, int channels, bool s
 // --- PNG, through libpng with lamina's own error handlers ------------------------------------------
 // (OpenImageIO's PNG reader lets libpng print its messages on standard error.)
 
-struct PngState {
+// What the reader reads from, and libpng's error trap.
+struct PngState : PngTrap {
   std::string_view bytes;
   size_t position = 0;
-  std::string error;
-  std::jmp_buf jump;
 };
-
-void png_failed(png_structp png, png_const_charp message) {
-  auto* state = static_cast<PngState*>(png_get_error_ptr(png));
-  state->error = message;
-  std::longjmp(state->jump, 1);
-}
-
-void png_warned(png_structp, png_const_charp) {}  // recoverable: the image still decodes
 
 void png_read_bytes(png_structp png, png_bytep out, size_t count) {
   auto* state = static_cast<PngState*>(png_get_io_ptr(png));
@@ -118,7 +108,8 @@ bool png_read_pixels(png_structp png, PngState& state, const PngLayout& layout, 
 class PngReader {
  public:
   explicit PngReader(PngState& state) {
-    png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_failed, png_warned);
+    png_ =
+        png_create_read_struct(PNG_LIBPNG_VER_STRING, static_cast<PngTrap*>(&state), png_trap_error, png_drop_warning);
     if (png_) info_ = png_create_info_struct(png_);
     if (!png_ || !info_) {
       png_destroy_read_struct(&png_, nullptr, nullptr);

@@ -234,6 +234,7 @@ class MaterialEmitter final : public OpWriter {
           << at << "m = " << float_literal(q.m) << ";\n"
           << at << "thickness = " << float_literal(q.thickness) << ";\n"
           << at << "weight = " << float_literal(q.weight) << ";\n"
+          << at << "share = " << float_literal(q.share) << ";\n"
           << at << "sigma = " << float_literal(q.sigma) << ";\n"
           << at << "absorption = " << vec3_literal(q.absorption) << ";\n"
           << at << "albedo = " << vec3_literal(q.albedo) << ";\n"

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace lamina::gltf {
+#include "graph/json_type.h"
 
-using Json = nlohmann::ordered_json;
+namespace lamina::gltf {
 
 // Appends views and accessors to a glTF document's "bufferViews" and "accessors" arrays while
 // collecting the bytes of its single buffer.

@@ -7,14 +7,13 @@
 #include <set>
 
 #include "graph/gltf/uri.h"
+#include "graph/json_type.h"
 #include "graph/json_values.h"
 #include "graph/limits.h"
 
 namespace lamina::gltf {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 std::string plural(size_t n, const std::string& one, const std::string& many = {}) {
   return std::to_string(n) + " " + (n == 1 ? one : many.empty() ? one + "s" : many);

@@ -2,12 +2,11 @@
 
 #include "graph/gltf/export.h"
 #include "graph/json_read.h"
+#include "graph/json_type.h"
 
 namespace lamina::gltf {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 // "/materials/0/rest" of the one-material wrapper -> base + "/rest".
 std::string map_pointer(const std::string& pointer, const std::string& base) {

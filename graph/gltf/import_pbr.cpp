@@ -5,13 +5,12 @@
 
 #include "graph/cpu/image.h"
 #include "graph/gltf/pbr_to_layers.h"
+#include "graph/json_type.h"
 #include "graph/number_text.h"
 
 namespace lamina::gltf {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 // A number of a KHR extension object; a wrong type is an error of the glTF.
 double number(ImportSession& s, const Json& v, const std::string& pointer, double fallback) {

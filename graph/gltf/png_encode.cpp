@@ -1,29 +1,18 @@
 #include "graph/gltf/png_encode.h"
 
-#include <png.h>
-
-#include <csetjmp>
 #include <stdexcept>
 #include <string>
+
+#include "graph/png_trap.h"
 
 namespace lamina::gltf {
 
 namespace {
 
-// libpng reports errors by longjmp; the message is kept for the exception thrown afterwards.
-struct PngWriteState {
+// Where the writer writes, and libpng's error trap.
+struct PngWriteState : PngTrap {
   std::vector<unsigned char>* bytes = nullptr;
-  std::string error;
-  std::jmp_buf jump;
 };
-
-void png_write_failed(png_structp png, png_const_charp message) {
-  auto* state = static_cast<PngWriteState*>(png_get_error_ptr(png));
-  state->error = message;
-  std::longjmp(state->jump, 1);
-}
-
-void png_write_warned(png_structp, png_const_charp) {}
 
 void png_write_bytes(png_structp png, png_bytep data, size_t count) {
   auto* state = static_cast<PngWriteState*>(png_get_io_ptr(png));
@@ -59,7 +48,8 @@ std::vector<unsigned char> encode_png(int width, int height, int channels, std::
   std::vector<unsigned char> bytes;
   PngWriteState state;
   state.bytes = &bytes;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, png_write_failed, png_write_warned);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, static_cast<PngTrap*>(&state), png_trap_error, png_drop_warning);
   if (png == nullptr) throw std::runtime_error("cannot create a PNG writer");
   png_infop info = png_create_info_struct(png);
   const bool ok = info != nullptr && write_rows(png, info, state, width, height, channels, pixels.data());

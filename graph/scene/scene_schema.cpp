@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include "graph/json_type.h"
 #include "graph/param_schema.h"
 #include "graph/scene/scene_fields.h"
 #include "graph/schema.h"
@@ -7,8 +8,6 @@
 namespace lamina {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 Json object_schema(const std::vector<ParamDecl>& fields, const std::string& description,
                    const std::string& fixed_key = {}, const std::string& fixed_value = {}) {

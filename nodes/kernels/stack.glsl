@@ -189,9 +189,9 @@ const int LAMINA_SUBSTRATE = 2;  // an opaque base
 // A mix's model: where its weight comes from.
 const int LAMINA_MIX_LINEAR = 0;  // the weight input, scalars.x
 // One step of a select's chain (nodes/select.cpp): its weight is lamina_select_weight of the index
-// scalars.x, the step's threshold scalars.y, the coverage scalars.z and the select's stack count
-// scalars.w, so that the chain shows one of its stacks, or all of them in proportion where the
-// pixel covers many cells.
+// scalars.x, the step's run of stacks [colour0.x, scalars.y), the coverage scalars.z and the
+// select's stack count scalars.w, so that the chain shows one of its stacks, or all of them in
+// proportion where the pixel covers many cells.
 const int LAMINA_MIX_SELECT = 1;
 
 // A layer's interface model.
@@ -256,6 +256,8 @@ struct LaminaParams {
   float m;          // layer, conductor: the slope after Elek's clamp to the layers above
   float thickness;  // layer
   float weight;     // mix
+  float share;      // the product of the mix weights on the path from the surface (1 without mixes): 0 where
+                    // a mix (a select's chain over one cell) shows none of the entry, which is then skipped
   float sigma;      // oren_nayar
   vec3 absorption;  // layer
   vec3 albedo;      // lambert, oren_nayar
@@ -1012,23 +1014,23 @@ LAMINA_FN float lamina_widened_slope(float m, vec3 normal) {
   return len >= 1.0f ? m : min(sqrt(m * m + 2.0f * (1.0f - l) / l), 1.0f);
 }
 
-// A select's step k (nodes/select.cpp) in a chain over `count` stacks, at `threshold` k + 1: the
-// share of what reaches it that goes on to the stacks after stack k. With coverage c, the share of
+// A select's step (nodes/select.cpp) in a chain over `count` stacks, for the run of stacks [lo, hi)
+// that are one stack repeated (one stack k: [k, k + 1)): the share of what reaches the step that
+// goes on to the stacks from hi on. With coverage c, the share of
 // stack j is (1 - c) where j = floor(index) (index clamped to [0, count - 1]) plus c / count: c = 0
 // shows the one stack the index names, c = 1 every stack alike, the mean over a pixel that covers
 // many cells whose uniform values the index spreads over [0, count) (texture/voronoi's coverage).
 // Such an index faded with its value towards the middle, count / 2 + (1 - c) (cell's - count / 2)
 // (lamina_voronoi_cell); the cell's own is read back from it. The step's weight is
-// P(stack > k) / P(stack >= k); 0 or 1 exactly when c = 0.
-LAMINA_FN float lamina_select_weight(float faded_index, float threshold, float count, float coverage) {
+// P(stack >= hi) / P(stack >= lo); 0 or 1 exactly when c = 0.
+LAMINA_FN float lamina_select_weight(float faded_index, float lo, float hi, float count, float coverage) {
   float c = clamp(coverage, 0.0f, 1.0f);
   float middle = 0.5f * count;
   float index = c > 0.0f && c < 1.0f ? max(middle + (faded_index - middle) / (1.0f - c), 0.0f) : faded_index;
-  float k = threshold - 1.0f;
-  float up_to = (index < threshold ? 1.0f - c : 0.0f) + c * threshold / count;  // P(stack <= k)
-  float before = (index < k ? 1.0f - c : 0.0f) + c * k / count;                 // P(stack < k)
+  float up_to = (index < hi ? 1.0f - c : 0.0f) + c * hi / count;  // P(stack < hi)
+  float before = (index < lo ? 1.0f - c : 0.0f) + c * lo / count;  // P(stack < lo)
   float reaching = 1.0f - before;
-  return reaching > 0.0f ? clamp((1.0f - up_to) / reaching, 0.0f, 1.0f) : (index >= threshold ? 1.0f : 0.0f);
+  return reaching > 0.0f ? clamp((1.0f - up_to) / reaching, 0.0f, 1.0f) : (index >= hi ? 1.0f : 0.0f);
 }
 
 // Tangents completing a frame around the unit normal n (z > 0): Duff et al. 2017, "Building an
@@ -1101,11 +1103,14 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     LaminaParams p;
     p.n_above = 1.0f;
     p.m_above = 0.0f;
+    p.share = 1.0f;
     int parent = entries[i].parent;
     if (parent >= 0) {
       bool below_layer = entries[parent].kind == LAMINA_LAYER;
       p.n_above = below_layer ? params[parent].ior : params[parent].n_above;
       p.m_above = below_layer ? params[parent].m : params[parent].m_above;
+      float weight = params[parent].weight;
+      p.share = params[parent].share * (below_layer ? 1.0f : (entries[i].side == 0 ? 1.0f - weight : weight));
     }
     p.ior = 1.0f;
     p.eta = 1.0f;
@@ -1145,7 +1150,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     } else if (kind == LAMINA_MIX) {
       bool chained = entries[i].model == LAMINA_MIX_SELECT;
       vec4 x = inputs[i].scalars;
-      p.weight = chained ? lamina_select_weight(x.x, x.y, x.w, x.z) : x.x;
+      p.weight = chained ? lamina_select_weight(x.x, inputs[i].colour0.x, x.y, x.w, x.z) : x.x;
     } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one);
       // n stays above 0.001, where the Fresnel equations stay finite.
@@ -1164,9 +1169,11 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
   if (model != LAMINA_MODEL_ENERGY_CONSERVING) return;
   for (int i = count - 1; i >= 0; --i) {
-    if (entries[i].kind == LAMINA_LAYER) params[i].grid = lamina_albedo_grid_xy(params[i].m, params[i].eta);
+    // An entry no mix shows keeps its first pass (every mix above reads it with weight 0).
+    bool shown = params[i].share > 0.0f;
+    if (shown && entries[i].kind == LAMINA_LAYER) params[i].grid = lamina_albedo_grid_xy(params[i].m, params[i].eta);
     // Only a layer over a conductor traps light: its quadrature is not spent on the others.
-    if (lamina_on_conductor(entries, i)) {
+    if (shown && lamina_on_conductor(entries, i)) {
       params[i].cone_grid = lamina_albedo_grid_xy(lamina_trap_slope(entries, params, i), max(params[i].eta, 1.0f));
       params[i].cone_etas = lamina_cone_etas(params[i].cone_grid);
       params[i].spread_own = lamina_spread_own(entries, params, i);
@@ -1178,7 +1185,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       params[i].trap_far = lamina_trap_series(entries, params, i, params[i].trap_angles.y);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }
-    if (entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
+    if (shown && entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
   }
 }
 
@@ -1209,13 +1216,14 @@ struct LaminaEvalStep {
 
 // The directions entry i of a walk is handed (l and v in the shading frame, z_above their cosines
 // in the frame above it) in its own frame, and whether they reach it: both above its horizon (a
-// mix: above the horizon of the frame above). Sets the step's tilt weight and clears the rest.
+// mix: above the horizon of the frame above), and some mix above shows it (a select's chain over
+// one cell walks the one stack it shows). Sets the step's tilt weight and clears the rest.
 LAMINA_FN bool lamina_eval_enter(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 lt, vec3 vt, vec2 z_above,
                                  LAMINA_OUT(vec3) l, LAMINA_OUT(vec3) v, LAMINA_OUT(LaminaEvalStep) step) {
   l = lamina_to_entry(p, lt);
   v = lamina_to_entry(p, vt);
   bool mixing = e.kind == LAMINA_MIX;
-  bool reached = z_above.x > 0.0f && z_above.y > 0.0f && (mixing || (l.z > 0.0f && v.z > 0.0f));
+  bool reached = p.share > 0.0f && z_above.x > 0.0f && z_above.y > 0.0f && (mixing || (l.z > 0.0f && v.z > 0.0f));
   step.f = vec3(0.0f);
   step.carry = vec3(0.0f);
   step.l_on = vec3(0.0f);
@@ -1434,9 +1442,10 @@ LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
         }
       }
     }
-    // In the entry's own frame; a tilted lobe is reached only above its horizon.
+    // In the entry's own frame; a tilted lobe is reached only above its horizon, and a lobe no mix
+    // shows not at all (it reflects nothing, so it gets no floor share either).
     v[i] = lamina_to_entry(params[i], handed);
-    valid[i] = valid[i] && (entries[i].kind == LAMINA_MIX || v[i].z > 0.0f);
+    valid[i] = valid[i] && params[i].share > 0.0f && (entries[i].kind == LAMINA_MIX || v[i].z > 0.0f);
   }
   float total = 0.0f;
   int valid_count = 0;

@@ -57,7 +57,7 @@ TEST_CASE("a select's chain shows (1 - c) on the indexed stack plus c / N on eac
     std::vector<double> share(size_t(count), 0.0);
     double reaching = 1.0;
     for (int step = 0; step + 1 < count; ++step) {
-      const double w = k::lamina_select_weight(index, float(step + 1), float(count), coverage);
+      const double w = k::lamina_select_weight(index, float(step), float(step + 1), float(count), coverage);
       share[size_t(step)] = reaching * (1.0 - w);
       reaching *= w;
     }
