@@ -100,7 +100,7 @@ Evaluator::Evaluator(Program program) : program_(std::move(program)) {
   }
 }
 
-void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point) const {
+void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted) const {
   float* r = point.registers_.data();
   for (const TextureOp& op : program_.ops) op.decl->run(op, ctx, r);
   std::array<k::LaminaInputs, kMaxStackEntries> inputs;
@@ -116,6 +116,7 @@ void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point) const {
     if (s.scalar_z.linked()) x.scalars.z = read_float(s.scalar_z, r);
     if (s.scalar_w.linked()) x.scalars.w = read_float(s.scalar_w, r);
     if (s.normal.linked()) x.normal = read_vec3(s.normal, r);
+    if (untilted) x.normal = vec3(0.0f, 0.0f, glm::length(x.normal));
   }
   k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), program_.clamp_lower_roughness, program_.model,
                           point.params_.data());
@@ -127,6 +128,14 @@ ShadingPoint Evaluator::bind(const ShadingContext& ctx) const {
   point.identity_frame_ = default_frame(ctx);
   if (!point.identity_frame_) point.frame_ = Frame::from_normal_tangent(ctx.normal, ctx.tangent);
   if (program_.textured()) resolve(ctx, point);
+  return point;
+}
+
+ShadingPoint Evaluator::bind_untilted(const ShadingContext& ctx) const {
+  ShadingPoint point(*this);
+  point.identity_frame_ = default_frame(ctx);
+  if (!point.identity_frame_) point.frame_ = Frame::from_normal_tangent(ctx.normal, ctx.tangent);
+  resolve(ctx, point, true);
   return point;
 }
 

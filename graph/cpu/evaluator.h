@@ -114,6 +114,11 @@ class Evaluator {
   const Program& program() const { return program_; }
 
   ShadingPoint bind(const ShadingContext& ctx) const;
+  // The point as its flat equivalent: every entry's normal turned to +z, keeping its length (a
+  // filtered mean of tilted normals still widens its lobe, lamina_widened_slope). For back ends that
+  // cannot tilt a lobe, such as a glTF fallback without normal maps: a tilted facet then shows its
+  // own lobe about the mirror direction, as a normal map would tilt it.
+  ShadingPoint bind_untilted(const ShadingContext& ctx) const;
 
   // The same as bind(ctx) and the call, without keeping the bound point.
   glm::vec3 eval(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
@@ -146,7 +151,7 @@ class Evaluator {
  private:
   friend class ShadingPoint;
   // Fills the point's registers and parameters for ctx (textured materials only).
-  void resolve(const ShadingContext& ctx, ShadingPoint& point) const;
+  void resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted = false) const;
 
   Program program_;
   int count_ = 0;                                 // stack entries

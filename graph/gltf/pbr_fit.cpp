@@ -291,7 +291,11 @@ FitResult fit_pbr(const FitTarget& target) {
 
 FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx) {
   // Bound once: a textured material resolves its stack here, not at each of the fit's evaluations.
-  const cpu::ShadingPoint point = material.bind(ctx);
+  // Flat: glTF's lobes cannot tilt and the fallback bakes no normal maps, so a facet that a normal
+  // input tilts is fitted as its own lobe about the mirror direction (Evaluator::bind_untilted).
+  // Fitted tilted, its off-mirror highlight became a broad rough lobe of another colour (an
+  // Aventurine glass facet tilted 4.6 degrees: |Delta L*| 8.6 and (a*, b*) 12.0 on the sphere).
+  const cpu::ShadingPoint point = material.bind_untilted(ctx);
   FitTarget target;
   target.eval = [&](glm::vec3 wi, glm::vec3 wo) { return point.eval(wi, wo); };
   target.albedo = [&](glm::vec3 wo) { return point.albedo(wo); };

@@ -86,7 +86,8 @@ struct FitTarget {
 // a zero fit), so that plain materials stay plain.
 FitResult fit_pbr(const FitTarget& target);
 
-// Fits PbrParams to `material` at shading context `ctx` (textures resolve at ctx.uv). Deterministic.
+// Fits PbrParams to `material` at shading context `ctx` (textures resolve at ctx.uv), as its flat
+// equivalent where a normal input tilts an entry (Evaluator::bind_untilted). Deterministic.
 FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx);
 
 }  // namespace lamina::gltf
