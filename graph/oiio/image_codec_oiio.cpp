@@ -140,7 +140,22 @@ class OiioCodec final : public ImageCodec {
 
 }  // namespace lamina
 
+namespace lamina {
+namespace {
+
+// One thread for OpenImageIO's image operations and OpenEXR's decoding: lamina's images are small
+// (labels, figures, textures read once), and worker threads started from a module loaded at run
+// time outlive every use of it; LeakSanitizer's exit-time scan crashed on theirs.
+OiioCodec make_codec() {
+  OIIO::attribute("threads", 1);
+  OIIO::attribute("exr_threads", -1);
+  return OiioCodec();
+}
+
+}  // namespace
+}  // namespace lamina
+
 extern "C" __attribute__((visibility("default"))) const lamina::ImageCodec* lamina_image_codec() {
-  static const lamina::OiioCodec codec;
+  static const lamina::OiioCodec codec = lamina::make_codec();
   return &codec;
 }
