@@ -2,8 +2,6 @@
 
 #include <filesystem>
 
-#include "graph/file_access.h"
-
 namespace lamina::cli::plot {
 
 namespace {

@@ -123,21 +123,18 @@ void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point, bool unt
   point.own_params_ = true;
 }
 
-ShadingPoint Evaluator::bind(const ShadingContext& ctx) const {
+ShadingPoint Evaluator::bind_point(const ShadingContext& ctx, bool untilted) const {
   ShadingPoint point(*this);
   point.identity_frame_ = default_frame(ctx);
   if (!point.identity_frame_) point.frame_ = Frame::from_normal_tangent(ctx.normal, ctx.tangent);
-  if (program_.textured()) resolve(ctx, point);
+  // An untextured material's parameters were resolved once; only turning its normals needs its own.
+  if (program_.textured() || untilted) resolve(ctx, point, untilted);
   return point;
 }
 
-ShadingPoint Evaluator::bind_untilted(const ShadingContext& ctx) const {
-  ShadingPoint point(*this);
-  point.identity_frame_ = default_frame(ctx);
-  if (!point.identity_frame_) point.frame_ = Frame::from_normal_tangent(ctx.normal, ctx.tangent);
-  resolve(ctx, point, true);
-  return point;
-}
+ShadingPoint Evaluator::bind(const ShadingContext& ctx) const { return bind_point(ctx, false); }
+
+ShadingPoint Evaluator::bind_untilted(const ShadingContext& ctx) const { return bind_point(ctx, true); }
 
 // --- a bound point ---------------------------------------------------------------------------------
 

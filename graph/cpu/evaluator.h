@@ -151,7 +151,8 @@ class Evaluator {
  private:
   friend class ShadingPoint;
   // Fills the point's registers and parameters for ctx (textured materials only).
-  void resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted = false) const;
+  ShadingPoint bind_point(const ShadingContext& ctx, bool untilted) const;
+  void resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted) const;
 
   Program program_;
   int count_ = 0;                                 // stack entries

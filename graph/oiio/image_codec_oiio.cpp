@@ -136,16 +136,9 @@ class OiioCodec final : public ImageCodec {
   }
 };
 
-}  // namespace
-
-}  // namespace lamina
-
-namespace lamina {
-namespace {
-
 // One thread for OpenImageIO's image operations and OpenEXR's decoding: lamina's images are small
-// (labels, figures, textures read once), and worker threads started from a module loaded at run
-// time outlive every use of it; LeakSanitizer's exit-time scan crashed on theirs.
+// (labels, figures, textures read once), and a module loaded at run time would otherwise leave
+// worker pools running for the rest of the program.
 OiioCodec make_codec() {
   OIIO::attribute("threads", 1);
   OIIO::attribute("exr_threads", -1);
@@ -153,6 +146,7 @@ OiioCodec make_codec() {
 }
 
 }  // namespace
+
 }  // namespace lamina
 
 extern "C" __attribute__((visibility("default"))) const lamina::ImageCodec* lamina_image_codec() {
