@@ -84,11 +84,12 @@ class OiioCodec final : public ImageCodec {
                                                   spec.z + 1, 0, channels, OIIO::TypeDesc::FLOAT, band.data())
                               : input->read_scanlines(0, 0, spec.y + y, spec.y + end, spec.z, 0, channels,
                                                       OIIO::TypeDesc::FLOAT, band.data());
-      if (!read) return "cannot decode the image: " + oiio_error(input->geterror());
+      // Some decoders (TIFF) report a damaged band and still return rows: stop at the first such
+      // band, or a file that declares thousands of missing strips is decoded (and its errors
+      // gathered) to the end.
+      if (!read || input->has_error()) return "cannot decode the image: " + oiio_error(input->geterror());
       sink.rows(y, end, band.data());
     }
-    // Some decoders (TIFF) report a damaged file and still return rows.
-    if (input->has_error()) return "cannot decode the image: " + oiio_error(input->geterror());
     input->close();
     return {};
   }
