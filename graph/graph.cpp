@@ -49,16 +49,16 @@ class CycleFinder {
   static constexpr size_t kShownNodes = 8;
 
  private:
-  struct Frame {
+  struct Visit {
     size_t node;
     size_t next_input = 0;
   };
 
   void visit(size_t root, std::vector<size_t>& order) {
-    std::vector<Frame> frames{{root}};
+    std::vector<Visit> frames{{root}};
     enter(root);
     while (!frames.empty()) {
-      Frame& f = frames.back();
+      Visit& f = frames.back();
       const auto& inputs = inputs_[f.node];
       if (f.next_input == inputs.size()) {
         path_.pop_back();

@@ -27,11 +27,11 @@ class DocumentBuilder {
   bool binary(Json::binary_t&) { return false; }  // not produced by the JSON parser
   bool start_object(size_t) {
     Json* object = place(Json::object());
-    frames_.push_back(Frame{object, false, 0, {}, false, {}});
+    frames_.push_back(OpenValue{object, false, 0, {}, false, {}});
     return true;
   }
   bool key(std::string& key) {
-    Frame& top = frames_.back();
+    OpenValue& top = frames_.back();
     top.key = key;
     top.has_key = true;
     auto& members = top.value->get_ref<Json::object_t&>();
@@ -51,7 +51,7 @@ class DocumentBuilder {
   }
   bool start_array(size_t) {
     Json* array = place(Json::array());
-    frames_.push_back(Frame{array, true, 0, {}, false, {}});
+    frames_.push_back(OpenValue{array, true, 0, {}, false, {}});
     return true;
   }
   bool end_array() { return end_object(); }
@@ -81,7 +81,7 @@ class DocumentBuilder {
   std::string error_text_;
 
  private:
-  struct Frame {
+  struct OpenValue {
     Json* value;  // the array or object being filled
     bool array;
     size_t index = 0;  // arrays: the element being read
@@ -97,7 +97,7 @@ class DocumentBuilder {
       root = std::move(v);
       return &root;
     }
-    Frame& top = frames_.back();
+    OpenValue& top = frames_.back();
     if (top.array) {
       auto& elements = top.value->get_ref<Json::array_t&>();
       elements.push_back(std::move(v));
@@ -115,7 +115,7 @@ class DocumentBuilder {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
   }
 
-  std::vector<Frame> frames_;
+  std::vector<OpenValue> frames_;
   Json* member_ = nullptr;
 };
 
@@ -256,13 +256,13 @@ std::string json_describe(const Json& j) {
 }
 
 std::optional<NestingExcess> find_nesting_excess(std::string_view text, int max_depth) {
-  struct Frame {
+  struct OpenBracket {
     bool array;
     size_t index = 0;
     std::string key;
     bool expecting_key = true;  // objects: the next string is a key
   };
-  std::vector<Frame> stack;
+  std::vector<OpenBracket> stack;
   for (size_t i = 0; i < text.size();) {
     const char c = text[i];
     if (c == '"') {
@@ -276,10 +276,11 @@ std::optional<NestingExcess> find_nesting_excess(std::string_view text, int max_
       if (static_cast<int>(stack.size()) >= max_depth) {
         NestingExcess excess;
         excess.offset = i;
-        for (const Frame& f : stack) append_pointer_token(excess.pointer, f.array ? std::to_string(f.index) : f.key);
+        for (const OpenBracket& f : stack)
+          append_pointer_token(excess.pointer, f.array ? std::to_string(f.index) : f.key);
         return excess;
       }
-      stack.push_back(Frame{c == '[', 0, {}, true});
+      stack.push_back(OpenBracket{c == '[', 0, {}, true});
     } else if ((c == ']' || c == '}') && !stack.empty()) {
       stack.pop_back();
     } else if (c == ',' && !stack.empty()) {

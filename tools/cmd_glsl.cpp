@@ -1,5 +1,5 @@
 // lamina glsl FILE [--material NAME] [--model NAME] [--target 330|450|es300] [--uniforms]
-//             [--shader sphere] [--interface FILE] -o OUT
+//             [--shader sphere|plane] [--interface FILE] -o OUT
 // The material(s) as one GLSL module (graph/glsl/generator.h), plus a JSON side file describing
 // the uniform blocks, samplers and tables: with --uniforms, or when a material's model reads a
 // table, it is OUT with its extension replaced by .uniforms.json (car.glsl -> car.uniforms.json),
@@ -39,7 +39,9 @@ int run_glsl(const GlslOptions& o) {
   }
   const bool to_stdout = o.output == "-";
   options.uniforms = o.uniforms;
-  options.sphere_shader = o.shader == "sphere";
+  options.shader = o.shader == "sphere"  ? glsl::Options::Shader::Sphere
+                   : o.shader == "plane" ? glsl::Options::Shader::Plane
+                                         : glsl::Options::Shader::None;
   std::vector<Program> programs;
   if (int code = load_programs(o.material, true, programs); code != kExitOk) return code;
   glsl::Module module;
@@ -95,8 +97,10 @@ void add_glsl(CLI::App& app, Runner& runner) {
                 "keep constant parameters in a std140 uniform block per material for live editing, and write the "
                 "block layout to a JSON side file: OUT with its extension replaced by .uniforms.json (car.glsl -> "
                 "car.uniforms.json), or --interface FILE");
-  cmd->add_option("--shader", o->shader, "append a ready-to-use fragment shader: sphere (an analytic lit sphere)")
-      ->check(CLI::IsMember({"sphere"}));
+  cmd->add_option("--shader", o->shader,
+                  "append a ready-to-use fragment shader: sphere (an analytic lit sphere, as lamina plot draws it) "
+                  "or plane (a ground plane receding to the horizon, textures filtered over each pixel's footprint)")
+      ->check(CLI::IsMember({"sphere", "plane"}));
   cmd->add_option("-o,--output", o->output, "the GLSL file to write, - for standard output")->required();
   cmd->add_option("--interface", o->interface_file,
                   "write the JSON side file (uniform blocks, samplers, tables) here, with or without --uniforms; "
@@ -104,7 +108,7 @@ void add_glsl(CLI::App& app, Runner& runner) {
   cmd->footer(
       "Nothing is written when the file is invalid, and the module and its side file are written together or not "
       "at all. Energy-conserving materials read a table the host binds as a texture: its texels are in the side "
-      "file, written next to OUT unless --interface names it. With several materials and --shader sphere, the sphere "
+      "file, written next to OUT unless --interface names it. With several materials and --shader, the sphere or plane "
       "shows the first one.");
   cmd->callback([o, &runner] { runner = [o] { return run_glsl(*o); }; });
 }

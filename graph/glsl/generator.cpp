@@ -12,6 +12,7 @@
 #include "graph/glsl/glsl_text.h"
 #include "graph/glsl/kernel_items.h"
 #include "graph/glsl/op_writer.h"
+#include "graph/glsl/plane_shader.h"
 #include "graph/glsl/sphere_shader.h"
 #include "graph/kernel_stack.h"
 #include "graph/node_decl.h"
@@ -504,7 +505,8 @@ Module generate(std::span<const Program> programs, const Options& options) {
   std::string code;  // everything after the kernels: what decides which kernels are needed
   for (const auto& [name, text] : module_code) code += text;
   for (const std::string& body : bodies) code += body;
-  if (options.sphere_shader) code += sphere_shader(module.materials.front().prefix);
+  if (options.shader == Options::Shader::Sphere) code += sphere_shader(module.materials.front().prefix);
+  if (options.shader == Options::Shader::Plane) code += plane_shader(module.materials.front().prefix);
   const std::string kernels = needed_kernels(kernel_sources(), code);
   std::string table;
   if (kernels.find("lamina_albedo_texel") != std::string::npos) table = albedo_table(programs, module);

@@ -33,8 +33,10 @@ struct Options {
   // false: every constant parameter is folded into a literal (smallest, fastest code).
   // true: constant parameters live in one std140 uniform block per material, for live editing.
   bool uniforms = false;
-  // Append a fragment shader main() that shades an analytic sphere with the first material.
-  bool sphere_shader = false;
+  // Append a fragment shader main() that draws the first material: on an analytic sphere
+  // (sphere_shader.h) or on a ground plane receding to the horizon (plane_shader.h).
+  enum class Shader { None, Sphere, Plane };
+  Shader shader = Shader::None;
   std::string lamina_version = LAMINA_VERSION;
 };
 

@@ -202,7 +202,7 @@ void run_glsl(std::string_view input) {
       glsl::Options options;
       options.target = target;
       options.uniforms = uniforms;
-      options.sphere_shader = uniforms;
+      options.shader = uniforms ? glsl::Options::Shader::Sphere : glsl::Options::Shader::Plane;
       const glsl::Module module = glsl::generate(programs, options);
       require(module.materials.size() == programs.size(), "the GLSL module does not hold every material");
       require(module.source.find("#version") == 0, "the GLSL module does not start with #version");

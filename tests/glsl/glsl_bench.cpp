@@ -63,7 +63,7 @@ gltest::Runner& runner() {
 gltest::Pass pass(const std::string& name, bool ambient) {
   std::vector<Program> programs{program(name)};
   glsl::Options options;
-  options.sphere_shader = true;
+  options.shader = glsl::Options::Shader::Sphere;
   const glsl::Module module = glsl::generate(programs, options);
   std::string source = module.source;
   // Edits of the wrapper's text, each of which must find what it replaces.

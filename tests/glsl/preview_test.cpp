@@ -70,7 +70,7 @@ std::vector<vec3> gpu_preview(const Program& program, const Case& c) {
   glsl::Options options;
   options.target = c.target;
   options.uniforms = c.uniforms;
-  options.sphere_shader = true;
+  options.shader = glsl::Options::Shader::Sphere;
   glsl::Module module = glsl::generate(std::span<const Program>(&program, 1), options);
   const glsl::MaterialInterface& mi = module.materials.front();
   // The runner sets uniforms through a block; the viewport becomes a constant.

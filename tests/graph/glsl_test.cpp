@@ -50,11 +50,12 @@ Compiled compile_file(const fs::path& file) {
   return c;
 }
 
-std::string generate(const std::vector<Program>& programs, glsl::Target target, bool uniforms, bool sphere = false) {
+std::string generate(const std::vector<Program>& programs, glsl::Target target, bool uniforms,
+                     glsl::Options::Shader shader = glsl::Options::Shader::None) {
   glsl::Options o;
   o.target = target;
   o.uniforms = uniforms;
-  o.sphere_shader = sphere;
+  o.shader = shader;
   return glsl::generate(programs, o).source;
 }
 
@@ -88,22 +89,25 @@ const glsl::Target kTargets[] = {glsl::Target::Glsl330, glsl::Target::Glsl450, g
 
 }  // namespace
 
-TEST_CASE("glsl: every material compiles for every target in both modes, with and without the sphere shader") {
+TEST_CASE("glsl: every material compiles for every target in both modes, alone and with the sphere and plane shaders") {
+  using Shader = glsl::Options::Shader;
   test::TempDir dir;
   int modules = 0;
   for (const fs::path& file : glsl_material_files()) {
     Compiled c = compile_file(file);
     for (glsl::Target target : kTargets)
       for (bool uniforms : {false, true})
-        for (bool sphere : {false, true}) {
-          std::string name = file.stem().string() + "_" + glsl::target_name(target) + (uniforms ? "_u" : "") +
-                             (sphere ? "_sphere" : "");
-          std::string log = validate(generate(c.programs, target, uniforms, sphere), dir.path(), name);
+        for (Shader shader : {Shader::None, Shader::Sphere, Shader::Plane}) {
+          // The plane's main() reads the material as the sphere's does: once per target suffices.
+          if (uniforms && shader == Shader::Plane) continue;
+          const char* suffix = shader == Shader::Sphere ? "_sphere" : shader == Shader::Plane ? "_plane" : "";
+          std::string name = file.stem().string() + "_" + glsl::target_name(target) + (uniforms ? "_u" : "") + suffix;
+          std::string log = validate(generate(c.programs, target, uniforms, shader), dir.path(), name);
           CHECK_MESSAGE(log.empty(), name << ":\n" << log);
           ++modules;
         }
   }
-  CHECK(modules == int(glsl_material_files().size()) * 12);
+  CHECK(modules == int(glsl_material_files().size()) * int(std::size(kTargets)) * 5);
 }
 
 TEST_CASE("glsl: the validator check can fail: a broken module is rejected") {
@@ -298,8 +302,9 @@ TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each
   std::vector<glsl::KernelSource> disk = kernels_on_disk();
   for (const fs::path& file : glsl_material_files()) {
     Compiled c = compile_file(file);
-    for (bool sphere : {false, true}) {
-      std::string source = generate(c.programs, glsl::Target::Glsl330, false, sphere);
+    for (glsl::Options::Shader shader :
+         {glsl::Options::Shader::None, glsl::Options::Shader::Sphere, glsl::Options::Shader::Plane}) {
+      std::string source = generate(c.programs, glsl::Target::Glsl330, false, shader);
       std::map<std::string, std::string> chunks = kernel_chunks(source);
       REQUIRE(!chunks.empty());
       std::string material_code =
