@@ -335,6 +335,7 @@ class Writer {
     if (fallback.metallic_roughness)
       pbr["metallicRoughnessTexture"] = Json{{"index", baked(*fallback.metallic_roughness, 1)}};
     gltf_material["pbrMetallicRoughness"] = pbr;
+    if (fallback.normal) gltf_material["normalTexture"] = Json{{"index", baked(*fallback.normal, 3)}};
 
     Json extensions = Json::object();
     if (fallback.uses_clearcoat) {

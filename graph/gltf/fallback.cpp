@@ -6,6 +6,7 @@
 #include <map>
 
 #include "graph/cpu/evaluator.h"
+#include "graph/parallel.h"
 #include "nodes/kernels/kernels.h"
 
 namespace lamina::gltf {
@@ -215,6 +216,77 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   }
 }
 
+// The base's normal at a point: the mean of its substrates' normals, each weighted by its share of
+// the stack (its cells' coverage under a select). Not normalised: texels average it.
+glm::vec3 base_normal(const cpu::ShadingPoint& point) {
+  const cpu::ShadingPoint::Stack stack = point.stack();
+  glm::vec3 sum(0.0f);
+  for (int i = 0; i < stack.count; ++i)
+    if (stack.entries[i].kind == kernels::LAMINA_SUBSTRATE) sum += stack.params[i].share * stack.params[i].normal;
+  return sum;
+}
+
+// Subsamples per texel side for the normal texture.
+constexpr int kNormalSubsamples = 2;
+
+// A texel of the normal texture: the base normal averaged over it, and whether the texel resolves
+// it (its points' normals agree).
+struct TexelNormal {
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  bool resolved = true;
+};
+
+// Texel (row, column) of a size x size bake: the base normal averaged over kNormalSubsamples^2
+// points of the texel, each with its own share of the footprint, normalised. The fit is of the
+// untilted point (Evaluator::bind_untilted), so the texture puts the tilt back. Texture nodes that
+// filter over the footprint (Voronoi glitter) and those that do not (texture/flakes, sampled
+// without filtering as Elek's flakes are) bake alike, as their mean over the texel. The texel
+// resolves the tilt when the mean of its points' unit normals is longer than cos 1 degree: inside
+// one glitter cell, not over many flakes. An interface's own tilt is not baked: glTF's clearcoat
+// normal is the coat's alone.
+TexelNormal texel_normal(const cpu::Evaluator& evaluator, int row, int column, int size) {
+  const int n = kNormalSubsamples;
+  ShadingContext ctx;
+  ctx.footprint = 1.0f / float(size * n);
+  glm::vec3 sum(0.0f), unit_sum(0.0f);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      ctx.uv =
+          glm::vec2((float(column * n + i) + 0.5f) / float(size * n), (float(row * n + j) + 0.5f) / float(size * n));
+      const glm::vec3 normal = base_normal(evaluator.bind(ctx));
+      sum += normal;
+      if (glm::dot(normal, normal) > 0.0f) unit_sum += glm::normalize(normal);
+    }
+  TexelNormal texel;
+  if (glm::dot(sum, sum) > 0.0f) texel.normal = glm::normalize(sum);
+  texel.resolved = glm::length(unit_sum) >= 0.99985f * float(n * n);  // cos(1 degree)
+  return texel;
+}
+
+// glTF's normal texture encoding: n * 0.5 + 0.5 per component.
+uint8_t normal_byte(float n) { return to_byte(0.5f * n + 0.5f); }
+
+// The normal texture of the texels' normals where it helps: when some texels are a byte's step
+// from flat, and at least half of those resolve their tilt. Otherwise it would show the bake's
+// sampling noise (flakes finer than a texel) rather than facets, and the fallback stays flat.
+std::optional<BakedImage> bake_normals(const std::vector<TexelNormal>& texels, int size) {
+  const uint8_t flat[3] = {normal_byte(0.0f), normal_byte(0.0f), normal_byte(1.0f)};
+  BakedImage image{size, 3, std::vector<uint8_t>(texels.size() * 3)};
+  size_t tilted = 0, resolved = 0;
+  for (size_t t = 0; t < texels.size(); ++t) {
+    bool off_flat = false;
+    for (int c = 0; c < 3; ++c) {
+      const uint8_t b = normal_byte(texels[t].normal[c]);
+      image.pixels[t * 3 + static_cast<size_t>(c)] = b;
+      off_flat = off_flat || b != flat[c];
+    }
+    tilted += off_flat ? 1 : 0;
+    resolved += off_flat && texels[t].resolved ? 1 : 0;
+  }
+  if (tilted == 0 || 2 * resolved < tilted) return std::nullopt;
+  return image;
+}
+
 }  // namespace
 
 int auto_bake_size(const Program& program) {
@@ -293,6 +365,19 @@ Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
   for (size_t t = 0; t < texel_params.size(); ++t)
     texel_params[t] = state_params[static_cast<size_t>(grid.state_of[t])];
   bake(texel_params, size, out);
+
+  // A normal texture only for a stack whose substrates a texture tilts.
+  bool tilts = false;
+  for (const StackEntry& e : program.stack) tilts = tilts || (e.kind == kernels::LAMINA_SUBSTRATE && e.normal.linked());
+  if (tilts) {
+    std::vector<TexelNormal> texel_normals(grid.state_of.size());
+    parallel_for(static_cast<size_t>(size), [&](size_t row) {
+      for (int column = 0; column < size; ++column)
+        texel_normals[row * static_cast<size_t>(size) + static_cast<size_t>(column)] =
+            texel_normal(evaluator, static_cast<int>(row), column, size);
+    });
+    out.normal = bake_normals(texel_normals, size);
+  }
   return out;
 }
 

@@ -41,6 +41,11 @@ struct Fallback {
   std::optional<BakedImage> base_color;          // RGB, sRGB-encoded (glTF's baseColorTexture)
   std::optional<BakedImage> metallic_roughness;  // G roughness, B metallic, linear
   std::optional<BakedImage> clearcoat;           // R clearcoat, G clearcoat roughness, linear
+  // RGB, linear: the base's tangent-space normal (glTF's normalTexture), baked where the texture
+  // nodes tilt the substrates' normals (flakes, glitter facets) by more than one byte's step.
+  // lamina's shading frame is glTF's tangent space when the mesh's tangent has w = 1: x along the
+  // tangent (u), y = normal x tangent, z the normal; so a texel stores lamina's (x, y, z) as is.
+  std::optional<BakedImage> normal;
   // One fit per distinct texture state (one for an untextured material); `texels` says how many
   // baked texels had that state exactly (0: a representative others interpolate towards).
   struct State {
