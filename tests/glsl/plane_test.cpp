@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "glsl/gl_runner.h"
+#include "glsl/gl_test_support.h"
 #include "glsl/material_pass.h"
 #include "graph/compile.h"
 #include "graph/glsl/generator.h"
@@ -24,25 +25,6 @@ using glm::vec3;
 using glm::vec4;
 
 namespace {
-
-Program program_of(const std::string& name) {
-  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name;
-  CheckedFile checked = check_file(file);
-  REQUIRE(checked.ok());
-  REQUIRE(checked.graphs.size() == 1);
-  return compile(*checked.graphs[0], file);
-}
-
-gltest::Runner& runner() {
-  static std::unique_ptr<gltest::Runner> r;
-  if (!r) {
-    std::string error;
-    r = gltest::Runner::create(gltest::Api::Desktop, &error);
-    INFO(error);
-    REQUIRE(r);
-  }
-  return *r;
-}
 
 // The plane at width x height pixels, linear, row 0 at the bottom (GL's), lit by the light alone.
 // The plane's uniforms become one std140 block, so that every picture draws the same source: Mesa
@@ -75,7 +57,7 @@ std::vector<vec3> draw_plane(const Program& program, int width, int height, floa
   std::memcpy(pass.uniform_block_data.data(), block, sizeof(block));
   std::vector<std::vector<vec4>> out;
   std::string error;
-  const bool ran = runner().run(pass, &out, &error);
+  const bool ran = test::shared_runner(gltest::Api::Desktop).run(pass, &out, &error);
   INFO(error);
   REQUIRE(ran);
   std::vector<vec3> picture(out[0].size());
@@ -107,7 +89,7 @@ std::vector<double> row_sums(const std::vector<vec3>& picture, int width, int ro
 
 TEST_CASE("plane: glitter far away converges to its cells' mean, the same at two resolutions") {
   // Aventurine glass: glitter cells of 60 per uv unit over a surface map of 400 (its README row).
-  const Program program = program_of("aventurine_glass.json");
+  const Program program = test::example_program("aventurine_glass.json");
   constexpr double kGlitterCells = 60.0;
   constexpr int kWidth = 96, kHeight = 64, kFactor = 4;
   // Rows whose coarse pixels span 8 glitter cells or more, so that a fine pixel spans 2 or more:

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "glsl/gl_runner.h"
+#include "glsl/gl_test_support.h"
 #include "glsl/material_pass.h"
 #include "graph/compile.h"
 #include "graph/cpu/evaluator.h"
@@ -45,26 +46,6 @@ const Case kCases[] = {
     {"patina_map_copper.json", glsl::Target::Glsl450, false},
 };
 
-Program program_of(const std::string& name) {
-  std::string file = std::string(LAMINA_SOURCE_DIR) + "/examples/materials/" + name;
-  CheckedFile checked = check_file(file);
-  REQUIRE(checked.ok());
-  REQUIRE(checked.graphs.size() == 1);
-  return compile(*checked.graphs[0], file);
-}
-
-gltest::Runner& runner(gltest::Api api) {
-  static std::unique_ptr<gltest::Runner> desktop, es;
-  std::unique_ptr<gltest::Runner>& r = api == gltest::Api::Es ? es : desktop;
-  if (!r) {
-    std::string error;
-    r = gltest::Runner::create(api, &error);
-    INFO(error);
-    REQUIRE(r);
-  }
-  return *r;
-}
-
 // The sphere shader's picture, row 0 at the top as render_preview's, sRGB-encoded as it writes it.
 std::vector<vec3> gpu_preview(const Program& program, const Case& c) {
   glsl::Options options;
@@ -84,7 +65,8 @@ std::vector<vec3> gpu_preview(const Program& program, const Case& c) {
   test::bind_material(pass, program, module, mi, c.uniforms);
   std::vector<std::vector<vec4>> out;
   std::string error;
-  bool ran = runner(c.target == glsl::Target::Es300 ? gltest::Api::Es : gltest::Api::Desktop).run(pass, &out, &error);
+  bool ran = test::shared_runner(c.target == glsl::Target::Es300 ? gltest::Api::Es : gltest::Api::Desktop)
+                 .run(pass, &out, &error);
   INFO(error);
   REQUIRE(ran);
   std::vector<vec3> picture(size_t(kSize) * kSize);
@@ -126,7 +108,7 @@ TEST_CASE("preview: the GLSL sphere shader draws lamina plot's sphere within one
     CAPTURE(c.file);
     CAPTURE(glsl::target_name(c.target));
     CAPTURE(c.uniforms);
-    Program program = program_of(c.file);
+    Program program = test::example_program(c.file);
     cpu::Evaluator evaluator(program);
     std::vector<vec3> gpu = gpu_preview(program, c);
     std::vector<vec3> cpu = cpu_preview(evaluator, kernels::LAMINA_PREVIEW_AMBIENT);
