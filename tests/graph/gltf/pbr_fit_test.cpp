@@ -369,8 +369,9 @@ TEST_CASE("the fallback's normal texture puts back glitter facets' tilt, and onl
     for (const StackEntry& e : program.stack)
       tilts = tilts || (e.kind == kernels::LAMINA_SUBSTRATE && e.normal.linked());
     // Whether a normal texture is made is decided by the stack alone when nothing tilts: the
-    // smallest bake shows it.
-    options.bake_size = tilts ? 256 : 64;
+    // smallest bake shows it. Under the sanitisers, which look for memory errors, every bake is
+    // the smallest and the statistics below are the optimised build's.
+    options.bake_size = tilts && !test::kSanitized ? 256 : 64;
     const gltf::Fallback fallback = gltf::fit_fallback(program, options);
     if (!tilts) CHECK_FALSE(fallback.normal);
     if (!fallback.normal) continue;
@@ -393,7 +394,7 @@ TEST_CASE("the fallback's normal texture puts back glitter facets' tilt, and onl
     const double mean_tilt = tilt_sum / std::max(tilted, 1.0);
     MESSAGE(file.filename().string() << ": " << 100.0 * share << "% of texels tilted over 1 degree, by " << mean_tilt
                                      << " degrees on average");
-    if (file.filename() == "aventurine_glass.json") {
+    if (file.filename() == "aventurine_glass.json" && !test::kSanitized) {
       aventurine = true;
       // One glitter entry in 4 is a facet, its cell's normal drawn from Beckmann slopes of m = tan 3
       // degrees (tan^2 = -m^2 ln(1 - u), Walter et al. 2007 eq. 28): 10.5% of facets tilt under 1
@@ -405,5 +406,5 @@ TEST_CASE("the fallback's normal texture puts back glitter facets' tilt, and onl
     }
   }
   // The glitter's 4.3 texels per cell at this size resolve its facets: it gets one.
-  CHECK(aventurine);
+  if (!test::kSanitized) CHECK(aventurine);
 }
