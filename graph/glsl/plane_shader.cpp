@@ -1,6 +1,7 @@
 #include "graph/glsl/plane_shader.h"
 
 #include "graph/glsl/glsl_text.h"
+#include "graph/glsl/sphere_shader.h"
 
 namespace lamina::glsl {
 
@@ -54,15 +55,9 @@ void main() {
     vec3 wo = -ray;
     vec3 radiance = lamina_preview_light(NAME_eval(LAMINA_PLANE_LIGHT, wo, point), LAMINA_PLANE_LIGHT);
     if (lamina_ambient_radiance > 0.0f) {
-      vec3 weights = vec3(0.0f);
-      for (int i = 0; i < LAMINA_PREVIEW_SKY_POINTS; ++i) {
-        vec3 s = lamina_preview_sky_point(i);
-        vec3 w;
-        float pdf;
-        vec3 f = NAME_sample(wo, s.xy, s.z, point, w, pdf);
-        weights += lamina_preview_sky_weight(f, w, pdf);
-      }
-      radiance += lamina_preview_sky(weights, vec3(lamina_ambient_radiance));
+      // wo itself, not turned to azimuth 0 as the sphere's: no table here, and tilted facets are
+      // not isotropic.
+      radiance += lamina_preview_sky(NAME_preview_sky_weights(wo, point), vec3(lamina_ambient_radiance));
     }
     colour = lamina_preview_display(radiance);
   }
@@ -72,6 +67,8 @@ void main() {
 
 }  // namespace
 
-std::string plane_shader(const std::string& prefix) { return replace_all(kPlane, "NAME", prefix); }
+std::string plane_shader(const std::string& prefix) {
+  return preview_sky_weights(prefix) + replace_all(kPlane, "NAME", prefix);
+}
 
 }  // namespace lamina::glsl

@@ -45,15 +45,7 @@ void main() {
     }
     // The sky once per pixel, at its first subsample on the sphere.
     if (lamina_ambient_radiance != vec3(0.0f) && !have_sky) {
-      vec3 weights = vec3(0.0f);
-      vec3 sky_view = lamina_preview_sky_view(wo);
-      for (int i = 0; i < LAMINA_PREVIEW_SKY_POINTS; ++i) {
-        vec3 p = lamina_preview_sky_point(i);
-        vec3 w;
-        float pdf;
-        vec3 f = NAME_sample(sky_view, p.xy, p.z, point, w, pdf);
-        weights += lamina_preview_sky_weight(f, w, pdf);
-      }
+      vec3 weights = NAME_preview_sky_weights(lamina_preview_sky_view(wo), point);
       sky = lamina_preview_sky(weights, lamina_ambient_radiance);
       have_sky = true;
     }
@@ -63,8 +55,27 @@ void main() {
 }
 )";
 
+const char* kSkyWeights = R"(// The preview's sky estimator for one view at one point (nodes/kernels/preview.glsl).
+vec3 NAME_preview_sky_weights(vec3 view, LaminaPoint point) {
+  vec3 weights = vec3(0.0f);
+  for (int i = 0; i < LAMINA_PREVIEW_SKY_POINTS; ++i) {
+    vec3 p = lamina_preview_sky_point(i);
+    vec3 w;
+    float pdf;
+    vec3 f = NAME_sample(view, p.xy, p.z, point, w, pdf);
+    weights += lamina_preview_sky_weight(f, w, pdf);
+  }
+  return weights;
+}
+
+)";
+
 }  // namespace
 
-std::string sphere_shader(const std::string& prefix) { return replace_all(kSphere, "NAME", prefix); }
+std::string preview_sky_weights(const std::string& prefix) { return replace_all(kSkyWeights, "NAME", prefix); }
+
+std::string sphere_shader(const std::string& prefix) {
+  return preview_sky_weights(prefix) + replace_all(kSphere, "NAME", prefix);
+}
 
 }  // namespace lamina::glsl

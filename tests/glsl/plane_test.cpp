@@ -96,8 +96,8 @@ TEST_CASE("plane: glitter far away converges to its cells' mean, the same at two
   // there both pictures filter fully (lamina_voronoi_cell), and they must agree to this share
   // of the row's mean radiance. Measured: at most 1.1%, at the row below the horizon.
   constexpr double kFarCells = 8.0, kTolerance = 0.02;
-  double worst_filtered = 0.0, mean_point_sampled = 0.0;
-  int far_rows = 0;
+  double worst_filtered = 0.0, point_sampled_sum = 0.0;
+  int far_rows = 0, point_sampled_rows = 0;
   for (float scale : {1.0f, 0.0f}) {
     CAPTURE(scale);
     const std::vector<vec3> coarse = draw_plane(program, kWidth, kHeight, scale);
@@ -124,13 +124,16 @@ TEST_CASE("plane: glitter far away converges to its cells' mean, the same at two
         worst_filtered = std::max(worst_filtered, diff / mean);
         ++far_rows;
       } else {
-        mean_point_sampled += diff / mean / far_rows;
+        point_sampled_sum += diff / mean;
+        ++point_sampled_rows;
       }
     }
   }
+  const double mean_point_sampled = point_sampled_sum / std::max(point_sampled_rows, 1);
   MESSAGE(far_rows << " far rows: filtered, the two resolutions differ by at most " << 100.0 * worst_filtered
                    << "% of a row's radiance; point-sampled, by " << 100.0 * mean_point_sampled << "% on average");
   // The plane reaches far enough to test, and the test sees aliasing where there is some.
   CHECK(far_rows >= kHeight / 4);
+  CHECK(point_sampled_rows == far_rows);
   CHECK(mean_point_sampled > 10.0 * kTolerance);
 }
