@@ -58,5 +58,13 @@ inline constexpr int kMaxSlots = 256;
 // (a stack both sides of a mix share appears once per side). Every mix entry has two children, so
 // there are fewer than two entries per lobe.
 inline constexpr int kMaxStackEntries = 2 * kMaxLobes;
+// Not a limit but a cliff: GLSL compilers unroll no loop of more than this many iterations
+// (Mesa's NIR: max_unroll_iterations, 32 for llvmpipe and most of its hardware drivers, applies
+// even to the loops it otherwise forces open because they index an array by their counter). The
+// composition loops over a stack's entries; up to this many it runs unrolled, every index
+// constant; beyond, the loops stay loops that index the stack's arrays by a variable, and on
+// llvmpipe the module takes minutes to compile instead of seconds. `lamina validate` and `lamina
+// glsl` warn about a stack beyond it.
+inline constexpr int kGlslUnrolledEntries = 32;
 
 }  // namespace lamina

@@ -80,4 +80,17 @@ bool check_stack_size(const Graph& graph, const std::string& file, const std::st
   return ok;
 }
 
+void warn_glsl_unrolling(const Graph& graph, const std::string& file, const std::string& material_pointer,
+                         Diagnostics& diagnostics) {
+  const int entries = measure_stack(graph).entries;
+  if (entries <= kGlslUnrolledEntries) return;
+  diagnostics.warning(file, material_pointer + "/surface",
+                      "the stack compiles to " + std::to_string(entries) + " entries, more than the " +
+                          std::to_string(kGlslUnrolledEntries) +
+                          " iterations GLSL compilers unroll a loop for: its GLSL module keeps the composition's "
+                          "loops and compiles slowly (minutes on Mesa's llvmpipe)",
+                      "give selects fewer distinct stacks (consecutive places naming one stack compile once), or "
+                      "split the material");
+}
+
 }  // namespace lamina

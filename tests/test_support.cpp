@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -42,6 +43,22 @@ std::vector<std::string> listing(const std::filesystem::path& dir) {
     names.push_back(std::filesystem::relative(e.path(), dir).string());
   std::sort(names.begin(), names.end());
   return names;
+}
+
+std::string select_of_layers(int stacks) {
+  nlohmann::json select = {{"id", "map"}, {"type", "select"}, {"index", "@cells.value"}};
+  nlohmann::json nodes = nlohmann::json::array(
+      {{{"id", "cells"}, {"type", "texture/voronoi"}, {"scale", 30.0}},
+       {{"id", "varnish"}, {"type", "interface/dielectric"}, {"ior", 1.5}, {"roughness_deg", 4.0}}});
+  for (int k = 0; k < stacks; ++k) {
+    const std::string n = std::to_string(k);
+    select["stack_" + n] = "@coat_" + n;
+    nodes.push_back({{"id", "coat_" + n}, {"type", "layer"}, {"interface", "@varnish"}, {"base", "@base_" + n}});
+    nodes.push_back({{"id", "base_" + n}, {"type", "substrate/lambert"}, {"albedo", {0.5, 0.04 * k, 0.3}}});
+  }
+  nodes.push_back(select);
+  return nlohmann::json{{"format", 1}, {"materials", {{{"name", "tiles"}, {"surface", "@map"}, {"nodes", nodes}}}}}
+      .dump();
 }
 
 TempDir::TempDir() {

@@ -33,6 +33,11 @@ RunResult run_cli_wrapped(const std::string& wrapper, const std::string& args, c
 // Every file and directory under `dir`, as paths relative to it, sorted.
 std::vector<std::string> listing(const std::filesystem::path& dir);
 
+// A material file's text: one material "tiles" whose surface is a select of `stacks` distinct
+// layered stacks (a varnish over a Lambertian colour each) by Voronoi cells, which compiles to
+// 3 stacks - 1 entries (2 per stack and a chain of stacks - 1 mixes).
+std::string select_of_layers(int stacks);
+
 // A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {
  public:

@@ -43,7 +43,7 @@ int run_glsl(const GlslOptions& o) {
                    : o.shader == "plane" ? glsl::Options::Shader::Plane
                                          : glsl::Options::Shader::None;
   std::vector<Program> programs;
-  if (int code = load_programs(o.material, true, programs); code != kExitOk) return code;
+  if (int code = load_programs(o.material, true, programs, true); code != kExitOk) return code;
   glsl::Module module;
   try {
     module = glsl::generate(programs, options);

@@ -4,6 +4,7 @@
 
 #include "graph/load.h"
 #include "graph/scene/scene.h"
+#include "graph/stack_size.h"
 #include "tools/commands.h"
 
 namespace lamina::cli {
@@ -55,6 +56,9 @@ Checked check_input(const std::filesystem::path& file, const AssetPolicy& policy
     return out;
   }
   CheckedFile checked = check_text(text, file.string(), policy);
+  for (size_t i = 0; i < checked.graphs.size(); ++i)
+    if (checked.graphs[i])
+      warn_glsl_unrolling(*checked.graphs[i], file.string(), "/materials/" + std::to_string(i), checked.diagnostics);
   out.diagnostics = std::move(checked.diagnostics);
   out.materials = checked.document.materials.size();
   out.summary = plural(out.materials, "material");

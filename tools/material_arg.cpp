@@ -11,6 +11,7 @@
 #include "graph/cpu/reference.h"
 #include "graph/load.h"
 #include "graph/model.h"
+#include "graph/stack_size.h"
 #include "tools/commands.h"
 
 namespace lamina::cli {
@@ -28,7 +29,7 @@ void add_model_option(CLI::App& cmd, MaterialArg& arg) {
       ->check(CLI::IsMember(model_names()));
 }
 
-int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out) {
+int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out, bool for_glsl) {
   CheckedFile checked;
   try {
     checked = check_file(arg.file, arg.input_options.policy_for(arg.file));
@@ -66,6 +67,13 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
                 << "\n";
       return kExitInvalid;
     }
+  }
+  if (for_glsl) {
+    Diagnostics advice;
+    for (size_t index : chosen)
+      if (checked.graphs[index])
+        warn_glsl_unrolling(*checked.graphs[index], arg.file, "/materials/" + std::to_string(index), advice);
+    print_diagnostics(advice);
   }
   out.clear();
   for (size_t index : chosen) {

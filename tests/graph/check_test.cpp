@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "graph/compile.h"
+#include "graph/limits.h"
 #include "graph/load.h"
 #include "graph/lobes.h"
 #include "graph/stack_size.h"
@@ -180,4 +181,35 @@ TEST_CASE("the checker's count of a stack's size is what compiling it takes, for
     }
   }
   CHECK(materials > files.size() / 2);
+}
+
+TEST_CASE("a stack longer than GLSL compilers unroll is a warning at its surface, and one that fits is not") {
+  // The most stacks whose chain still fits: 3 stacks - 1 entries.
+  const int fitting = (kGlslUnrolledEntries + 1) / 3;
+  for (int stacks : {fitting, fitting + 1}) {
+    CAPTURE(stacks);
+    CheckedFile checked = check_text(test::select_of_layers(stacks), "tiles.json");
+    REQUIRE(checked.ok());
+    REQUIRE(checked.graphs.front());
+    const int entries = measure_stack(*checked.graphs.front()).entries;
+    CHECK(entries == 3 * stacks - 1);
+    Diagnostics advice;
+    warn_glsl_unrolling(*checked.graphs.front(), "tiles.json", "/materials/0", advice);
+    if (entries <= kGlslUnrolledEntries) {
+      CHECK(advice.warnings().empty());
+    } else {
+      REQUIRE(advice.warnings().size() == 1);
+      CHECK(advice.warnings().front().pointer == "/materials/0/surface");
+      CHECK(advice.warnings().front().message.find(std::to_string(entries) + " entries") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("no bundled example is longer than GLSL compilers unroll") {
+  for (const auto& file : test::example_files()) {
+    CAPTURE(file.string());
+    CheckedFile checked = check_file(file);
+    REQUIRE(checked.ok());
+    for (const auto& graph : checked.graphs) CHECK(measure_stack(*graph).entries <= kGlslUnrolledEntries);
+  }
 }

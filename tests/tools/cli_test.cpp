@@ -1,9 +1,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "graph/limits.h"
 #include "graph/schema.h"
 #include "test_support.h"
 
@@ -113,6 +115,26 @@ TEST_CASE("lamina validate checks a scene and its material files and prints a on
   CHECK(r.out.find("examples/showcase.json: ok (scene: " + objects + " objects, " + materials +
                    " materials, 2 lights, 1 camera)") != std::string::npos);
   CHECK(r.out.find("1 of 1 file valid, " + materials + " materials, 0 warnings") != std::string::npos);
+}
+
+TEST_CASE("lamina validate and lamina glsl warn about a stack longer than GLSL compilers unroll, and still succeed") {
+  test::TempDir dir;
+  const int stacks = (kGlslUnrolledEntries + 1) / 3 + 1;  // the fewest whose 3 stacks - 1 entries are too many
+  { std::ofstream(dir.path() / "tiles.json") << test::select_of_layers(stacks); }
+  const std::string warning =
+      "tiles.json:/materials/0/surface: warning: the stack compiles to " + std::to_string(3 * stacks - 1) + " entries";
+  auto v = test::run_cli("validate tiles.json", dir.path());
+  CHECK(v.exit_code == 0);
+  CHECK(v.err.find(warning) != std::string::npos);
+  CHECK(v.out.find("1 warning") != std::string::npos);
+  auto g = test::run_cli("glsl tiles.json -o tiles.glsl", dir.path());
+  CHECK(g.exit_code == 0);
+  CHECK(g.err.find(warning) != std::string::npos);
+  CHECK(std::filesystem::exists(dir.path() / "tiles.glsl"));
+  // The CPU evaluator does not care: eval says nothing.
+  auto e = test::run_cli("eval tiles.json --wi 0,0,1 --wo 0,0,1", dir.path());
+  CHECK(e.exit_code == 0);
+  CHECK(e.err.empty());
 }
 
 TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {
