@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "graph/json_write.h"
 #include "graph/limits.h"
@@ -116,7 +117,59 @@ class Compiler final : public InputSource {
   // base; a mix's a and b), consecutive repeats of a select's stack as one run (Graph::stack_runs).
   // A node over N > 2 runs (a select) becomes a chain of N - 1 two-way entries: entry `part` k has
   // run k first and, second, entry k + 1, or for the last, run N - 1. Returns the entry's index.
-  int expand(size_t i, int parent, int side, int part = 0) {
+  //
+  // A layer whose chain of layers ends on a mix or a select is handed down into each stack the
+  // mix blends (`over`, outermost first): layer over mix(a, b) compiles as mix(layer over a, layer
+  // over b). A mix is a share of the surface, and a layer over it lies over each share; the seeds'
+  // composition is linear in the base, so its BRDF is the same either way, while the
+  // energy-conserving model's coupling of a layer with the diffuse light below it (its diffuse
+  // coefficient) needs the one stack under it, which a mix does not have.
+  int expand(size_t i, int parent, int side, int part = 0, std::vector<size_t> over = {}) {
+    const NodeKind kind = g_.decl(i).kind;
+    const bool blends = kind == NodeKind::Mix || kind == NodeKind::Select;
+    if (kind == NodeKind::Layer && layers_end_on_blend(i)) {
+      over.push_back(i);
+      return expand(g_.stack_runs(i).front().node, parent, side, 0, std::move(over));
+    }
+    if (!blends && !over.empty()) return expand_under(over, 0, i, parent, side);
+    const int index = add_entry(i, parent, side, part);
+    const std::vector<Graph::StackRun> below = g_.stack_runs(i);
+    const size_t k = size_t(part);
+    if (below.size() > k) {
+      const int first = expand(below[k].node, index, 0, 0, over);
+      program_.stack[size_t(index)].first = first;
+    }
+    if (below.size() > k + 1) {
+      const int second =
+          below.size() > k + 2 ? expand(i, index, 1, part + 1, over) : expand(below[k + 1].node, index, 1, 0, over);
+      program_.stack[size_t(index)].second = second;
+    }
+    return index;
+  }
+
+  // Whether the chain of layers from layer i down its bases ends on a mix or a select.
+  bool layers_end_on_blend(size_t i) const {
+    size_t n = i;
+    while (g_.decl(n).kind == NodeKind::Layer) {
+      const std::vector<Graph::StackRun> below = g_.stack_runs(n);
+      if (below.empty()) return false;
+      n = below.front().node;
+    }
+    return g_.decl(n).kind == NodeKind::Mix || g_.decl(n).kind == NodeKind::Select;
+  }
+
+  // The layers over[k..] handed down to stack node `stack` (a layer or substrate), each the base of
+  // the one before, then `stack` below them. Returns the first's entry.
+  int expand_under(const std::vector<size_t>& over, size_t k, size_t stack, int parent, int side) {
+    if (k == over.size()) return expand(stack, parent, side);
+    const int index = add_entry(over[k], parent, side, 0);
+    const int first = expand_under(over, k + 1, stack, index, 0);
+    program_.stack[size_t(index)].first = first;
+    return index;
+  }
+
+  // Stack node i's entry, lowered by its own behaviour, without its children yet.
+  int add_entry(size_t i, int parent, int side, int part) {
     if (int(program_.stack.size()) >= kMaxStackEntries)
       throw std::logic_error("compile: the stack of '" + program_.name + "' exceeds " +
                              std::to_string(kMaxStackEntries) + " entries, which the checker refuses");
@@ -129,19 +182,8 @@ class Compiler final : public InputSource {
     entry.node = g_.node(i).id;
     NodeLowering lowering(g_, i, file_, policy_, *this, &entry, nullptr, part);
     decl.lower(lowering);
-    const int index = int(program_.stack.size());
     program_.stack.push_back(std::move(entry));
-    const std::vector<Graph::StackRun> below = g_.stack_runs(i);
-    const size_t k = size_t(part);
-    if (below.size() > k) {
-      const int first = expand(below[k].node, index, 0);
-      program_.stack[size_t(index)].first = first;
-    }
-    if (below.size() > k + 1) {
-      const int second = below.size() > k + 2 ? expand(i, index, 1, part + 1) : expand(below[k + 1].node, index, 1);
-      program_.stack[size_t(index)].second = second;
-    }
-    return index;
+    return int(program_.stack.size()) - 1;
   }
 
   const Graph& g_;

@@ -11,7 +11,9 @@ StackSize measure_stack(const Graph& graph) {
   StackSize size;
   // Per node, its lobes and the entries it compiles to, counted over every path below it. A
   // structural link left out (an error reported elsewhere) counts as nothing.
-  std::vector<int> lobes(graph.size(), 0), entries(graph.size(), 0);
+  // `leaves`: the layers and substrates a layer over the node would lie on, one per stack a mix
+  // blends (compile.cpp hands a layer over a mix down into each of them).
+  std::vector<int> lobes(graph.size(), 0), entries(graph.size(), 0), leaves(graph.size(), 1);
   for (size_t i : graph.topological_order()) {
     if (!graph.used(i)) continue;
     const NodeDecl& decl = graph.decl(i);
@@ -22,14 +24,28 @@ StackSize measure_stack(const Graph& graph) {
       case NodeKind::Substrate: {
         ++size.stack_nodes;
         const std::vector<Graph::StackRun> below = graph.stack_runs(i);
-        // A layer adds its interface's lobe; a select of N runs of stacks is a chain of N - 1
-        // entries, each run's stack compiled once (Graph::stack_runs).
-        lobes[i] = decl.kind == NodeKind::Layer || decl.kind == NodeKind::Substrate ? 1 : 0;
-        entries[i] = decl.kind == NodeKind::Select ? std::max(int(below.size()) - 1, 1) : 1;
+        if (decl.kind == NodeKind::Layer) {
+          // An entry and a lobe (its interface's) per stack it lies on: one, or each one a mix
+          // below it blends.
+          const int base_leaves = below.empty() ? 1 : leaves[below.front().node];
+          lobes[i] = base_leaves;
+          entries[i] = base_leaves;
+          leaves[i] = base_leaves;
+        } else if (decl.kind == NodeKind::Substrate) {
+          lobes[i] = 1;
+          entries[i] = 1;
+        } else {
+          // A select of N runs of stacks is a chain of N - 1 entries, each run's stack compiled
+          // once (Graph::stack_runs).
+          entries[i] = decl.kind == NodeKind::Select ? std::max(int(below.size()) - 1, 1) : 1;
+          leaves[i] = 0;
+        }
         for (const Graph::StackRun& b : below) {
           lobes[i] += lobes[b.node];
           entries[i] += entries[b.node];
+          if (decl.kind != NodeKind::Layer) leaves[i] += leaves[b.node];
         }
+        leaves[i] = std::min(std::max(leaves[i], 1), kMaxStackEntries + 1);
         break;
       }
       case NodeKind::Texture:

@@ -27,9 +27,11 @@ NodeDecl declare_layer() {
                          .links()
                          .or_default(Link{})
                          .described("the layer's bulk (a medium/* node); omitted: medium/clear"));
-  d.params.push_back(param("base", ValueType::Stack)
-                         .links()
-                         .described("what the layer lies on: a layer, a mix or a substrate/* node"));
+  d.params.push_back(
+      param("base", ValueType::Stack)
+          .links()
+          .described("what the layer lies on: a layer, a mix or a substrate/* node; over a mix or a select, it lies "
+                     "over each of their stacks (compiled as the mix of the layer over each)"));
   d.outputs.push_back({"stack", ValueType::Stack, "the stack, for a layer's base or a material's surface"});
   d.lower = lower_layer;
   return d;
