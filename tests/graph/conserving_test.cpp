@@ -134,9 +134,10 @@ TEST_CASE("a coat over a mix of bases is the mix of the coat over each, so each 
   for (int i = 0; i < n; ++i) f_avg += 2.0 * test::fresnel_reference((i + 0.5) / n, eta) * ((i + 0.5) / n) / n;
   const double r_internal = 1.0 - (1.0 - f_avg) / (eta * eta);
   const cpu::Evaluator e = test::evaluator_from_text(coat_over_checker(0.2, 0.8, true, "energy_conserving"));
-  for (auto [uv, a] : {std::pair{glm::vec2(0.1f, 0.1f), 0.2}, std::pair{glm::vec2(0.3f, 0.1f), 0.8}}) {
+  for (const auto& tile : {std::pair{glm::vec2(0.1f, 0.1f), 0.2}, std::pair{glm::vec2(0.3f, 0.1f), 0.8}}) {
+    const double a = tile.second;
     ShadingContext ctx;
-    ctx.uv = uv;
+    ctx.uv = tile.first;
     const double f0 = test::fresnel_reference(1.0, eta);
     const double expected = f0 + (1.0 - f0) * a * (1.0 - r_internal) / (1.0 - a * r_internal);
     CAPTURE(a);
