@@ -137,6 +137,31 @@ TEST_CASE("lamina validate and lamina glsl warn about a stack longer than GLSL c
   CHECK(e.err.empty());
 }
 
+TEST_CASE("lamina glsl warns about each material shorter than its module's longest stack, and only then") {
+  test::TempDir dir;
+  // Two materials of 2 and 3 stacks (5 and 8 entries), and a file of the longer alone.
+  nlohmann::json both = nlohmann::json::parse(test::select_of_layers(2));
+  nlohmann::json longer = nlohmann::json::parse(test::select_of_layers(3));
+  longer["materials"][0]["name"] = "more_tiles";
+  both["materials"].push_back(longer["materials"][0]);
+  {
+    std::ofstream(dir.path() / "both.json") << both.dump();
+    std::ofstream(dir.path() / "longer.json") << longer.dump();
+  }
+  auto r = test::run_cli("glsl both.json -o both.glsl", dir.path());
+  CHECK(r.exit_code == 0);
+  // A select of N stacks compiles to 3 N - 1 entries (test::select_of_layers).
+  CHECK(r.err.find("both.json:/materials/0/surface: warning: the stack compiles to " + std::to_string(3 * 2 - 1) +
+                   " entries in a module whose longest has " + std::to_string(3 * 3 - 1)) != std::string::npos);
+  CHECK(r.err.find("/materials/1/") == std::string::npos);
+  auto alone = test::run_cli("glsl longer.json -o longer.glsl", dir.path());
+  CHECK(alone.exit_code == 0);
+  CHECK(alone.err.empty());
+  auto chosen = test::run_cli("glsl both.json --material tiles -o tiles.glsl", dir.path());
+  CHECK(chosen.exit_code == 0);
+  CHECK(chosen.err.empty());
+}
+
 TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {
   auto scene = test::run_cli("validate tests/data/bad_scenes/radius_zero.json", test::source_dir());
   CHECK(scene.exit_code == 2);
