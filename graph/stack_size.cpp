@@ -96,9 +96,8 @@ bool check_stack_size(const Graph& graph, const std::string& file, const std::st
   return ok;
 }
 
-void warn_glsl_unrolling(const Graph& graph, const std::string& file, const std::string& material_pointer,
+void warn_glsl_unrolling(int entries, const std::string& file, const std::string& material_pointer,
                          Diagnostics& diagnostics) {
-  const int entries = measure_stack(graph).entries;
   if (entries <= kGlslUnrolledEntries) return;
   diagnostics.warning(file, material_pointer + "/surface",
                       "the stack compiles to " + std::to_string(entries) + " entries, more than the " +

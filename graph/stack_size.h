@@ -28,10 +28,11 @@ StackSize measure_stack(const Graph& graph);
 bool check_stack_size(const Graph& graph, const std::string& file, const std::string& material_pointer,
                       Diagnostics& diagnostics);
 
-// Warns, at the material's "surface", when its compiled stack has more entries than GLSL compilers
-// unroll a loop for (kGlslUnrolledEntries): advice for `lamina validate` and `lamina glsl`, as
-// the CPU evaluator does not care.
-void warn_glsl_unrolling(const Graph& graph, const std::string& file, const std::string& material_pointer,
+// Warns, at the material's "surface", when its compiled stack has more `entries` than GLSL
+// compilers unroll a loop for (kGlslUnrolledEntries): advice for `lamina validate` (which counts
+// them with measure_stack) and `lamina glsl` (from the compiled Program), as the CPU evaluator does
+// not care.
+void warn_glsl_unrolling(int entries, const std::string& file, const std::string& material_pointer,
                          Diagnostics& diagnostics);
 
 }  // namespace lamina

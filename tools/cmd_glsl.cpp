@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "graph/glsl/generator.h"
+#include "graph/stack_size.h"
 #include "tools/commands.h"
 #include "tools/material_arg.h"
 
@@ -31,22 +32,26 @@ struct GlslOptions {
 // (an OUT without an extension gets one: car -> car.uniforms.json).
 fs::path default_side_file(const std::string& output) { return fs::path(output).replace_extension(".uniforms.json"); }
 
-// A module's arrays are as long as its longest stack, and Mesa forces a loop open only
-// when its trip count is the length of the array it indexes: a shorter material keeps its loops
-// (graph/limits.h, kGlslUnrolledEntries). Warns about each; programs are the file's materials in
-// order when there are several.
-void warn_shorter_stacks(const std::string& file, const std::vector<Program>& programs) {
+// What makes the module's loops stay loops in GLSL compilers (graph/limits.h,
+// kGlslUnrolledEntries): a stack longer than they unroll, and a stack shorter than the module's
+// longest, as the module's arrays are as long as the longest and Mesa forces a loop open only when
+// its trip count is the length of the array it indexes. indices[i]: program i's material in the file.
+void warn_about_unrolling(const std::string& file, const std::vector<Program>& programs,
+                          const std::vector<size_t>& indices) {
   size_t longest = 0;
   for (const Program& p : programs) longest = std::max(longest, p.stack.size());
   Diagnostics advice;
-  for (size_t i = 0; i < programs.size(); ++i)
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const std::string material = "/materials/" + std::to_string(indices[i]);
+    warn_glsl_unrolling(int(programs[i].stack.size()), file, material, advice);
     if (programs[i].stack.size() < longest)
-      advice.warning(file, "/materials/" + std::to_string(i) + "/surface",
+      advice.warning(file, material + "/surface",
                      "the stack compiles to " + std::to_string(programs[i].stack.size()) +
                          " entries in a module whose longest has " + std::to_string(longest) +
                          ": GLSL compilers unroll the composition's loops only for the longest, and this material's "
                          "stay loops (Aventurine glass compiled 11 times slower so on llvmpipe)",
                      "generate a module per material (--material NAME)");
+  }
   print_diagnostics(advice);
 }
 
@@ -63,8 +68,9 @@ int run_glsl(const GlslOptions& o) {
                    : o.shader == "plane" ? glsl::Options::Shader::Plane
                                          : glsl::Options::Shader::None;
   std::vector<Program> programs;
-  if (int code = load_programs(o.material, true, programs, true); code != kExitOk) return code;
-  warn_shorter_stacks(o.material.file, programs);
+  std::vector<size_t> indices;
+  if (int code = load_programs(o.material, true, programs, &indices); code != kExitOk) return code;
+  warn_about_unrolling(o.material.file, programs, indices);
   glsl::Module module;
   try {
     module = glsl::generate(programs, options);

@@ -11,7 +11,6 @@
 #include "graph/cpu/reference.h"
 #include "graph/load.h"
 #include "graph/model.h"
-#include "graph/stack_size.h"
 #include "tools/commands.h"
 
 namespace lamina::cli {
@@ -29,7 +28,8 @@ void add_model_option(CLI::App& cmd, MaterialArg& arg) {
       ->check(CLI::IsMember(model_names()));
 }
 
-int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out, bool for_glsl) {
+int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out,
+                  std::vector<size_t>* indices) {
   CheckedFile checked;
   try {
     checked = check_file(arg.file, arg.input_options.policy_for(arg.file));
@@ -68,13 +68,7 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
       return kExitInvalid;
     }
   }
-  if (for_glsl) {
-    Diagnostics advice;
-    for (size_t index : chosen)
-      if (checked.graphs[index])
-        warn_glsl_unrolling(*checked.graphs[index], arg.file, "/materials/" + std::to_string(index), advice);
-    print_diagnostics(advice);
-  }
+  if (indices) *indices = chosen;
   out.clear();
   for (size_t index : chosen) {
     const std::optional<Graph>& graph = checked.graphs[index];

@@ -36,10 +36,10 @@ void add_model_option(CLI::App& cmd, MaterialArg& arg);
 int load_material(const MaterialArg& arg, std::optional<cpu::Evaluator>& out);
 
 // As load_material, but compiles to Programs: the named material, the only one, or with
-// `all_when_unnamed` every material of the file when no name is given. With `for_glsl`, also
-// warns about each chosen material whose stack is too long for GLSL compilers to unroll
-// (warn_glsl_unrolling).
-int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out, bool for_glsl = false);
+// `all_when_unnamed` every material of the file when no name is given. `indices`, when given,
+// receives each program's material index in the file.
+int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Program>& out,
+                  std::vector<size_t>* indices = nullptr);
 
 // Parses `count` comma-separated finite numbers ("0.3,0,1"; spaces around them are allowed).
 // On a mistake prints "lamina: OPTION: ..." on stderr and returns nothing.

@@ -194,7 +194,7 @@ TEST_CASE("a stack longer than GLSL compilers unroll is a warning at its surface
     const int entries = measure_stack(*checked.graphs.front()).entries;
     CHECK(entries == 3 * stacks - 1);
     Diagnostics advice;
-    warn_glsl_unrolling(*checked.graphs.front(), "tiles.json", "/materials/0", advice);
+    warn_glsl_unrolling(entries, "tiles.json", "/materials/0", advice);
     if (entries <= kGlslUnrolledEntries) {
       CHECK(advice.warnings().empty());
     } else {
