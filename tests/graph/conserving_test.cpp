@@ -57,34 +57,20 @@ void check_albedo_against_reference(const cpu::ShadingPoint& point, std::initial
   }
 }
 
-}  // namespace
-
-TEST_CASE("a smooth clear coat over a Lambert base reflects what the closed form of its interreflections says") {
-  // Light enters with 1 - F(mu), the base reflects albedo a diffusely, the coat sends back the
-  // internal hemispherical reflectance R = 1 - (1 - F_avg) / eta^2 (F_avg = 2 int F mu dmu), so the
-  // base's light leaves with a (1 - R) / (1 - a R): directional albedo F + (1 - F) a (1 - R) / (1 - a R).
-  const double eta = 1.5;
+// The directional albedo at cosine mu of a smooth clear coat of index eta over a Lambert base of
+// albedo a: light enters with 1 - F(mu), the base reflects a diffusely, the coat sends back the
+// internal hemispherical reflectance R = 1 - (1 - F_avg) / eta^2 (F_avg = 2 int F mu dmu), so the
+// base's light leaves with a (1 - R) / (1 - a R): F + (1 - F) a (1 - R) / (1 - a R).
+double coat_over_lambert_albedo(double mu, double eta, double a) {
   double f_avg = 0.0;
   const int n = 200000;
   for (int i = 0; i < n; ++i) {
-    double mu = (i + 0.5) / n;
-    f_avg += 2.0 * test::fresnel_reference(mu, eta) * mu / n;
+    const double x = (i + 0.5) / n;
+    f_avg += 2.0 * test::fresnel_reference(x, eta) * x / n;
   }
   const double r_internal = 1.0 - (1.0 - f_avg) / (eta * eta);
-  for (double a : {0.2, 0.8, 1.0}) {
-    cpu::Evaluator e = test::evaluator_from_text(coat_over_lambert(eta, a, "energy_conserving"));
-    for (double theta : {0.0, 30.0, 50.0, 70.0}) {
-      double mu = std::cos(test::radians(theta));
-      double expected = test::fresnel_reference(mu, eta) +
-                        (1.0 - test::fresnel_reference(mu, eta)) * a * (1.0 - r_internal) / (1.0 - a * r_internal);
-      vec3 albedo = e.albedo(ShadingContext{}, test::to_float(test::spherical(test::radians(theta), 0.0)), 16384);
-      CAPTURE(a);
-      CAPTURE(theta);
-      // The table's interpolation (within 0.011 of F for a smooth boundary, less at these angles)
-      // and the five-point quadrature of the interreflection.
-      CHECK(double(albedo.x) == doctest::Approx(expected).epsilon(0.01).scale(0.0));
-    }
-  }
+  const double f = test::fresnel_reference(mu, eta);
+  return f + (1.0 - f) * a * (1.0 - r_internal) / (1.0 - a * r_internal);
 }
 
 // A smooth clear coat of index 1.5 over a checker of two Lambertian albedos a and b: the coat over
@@ -106,6 +92,25 @@ std::string coat_over_checker(double a, double b, bool coat_over_mix, const std:
          R"(", "surface": "@surface", "nodes": [)" + paper + common + stack + "]}]}";
 }
 
+}  // namespace
+
+TEST_CASE("a smooth clear coat over a Lambert base reflects what the closed form of its interreflections says") {
+  // coat_over_lambert_albedo's closed form.
+  const double eta = 1.5;
+  for (double a : {0.2, 0.8, 1.0}) {
+    cpu::Evaluator e = test::evaluator_from_text(coat_over_lambert(eta, a, "energy_conserving"));
+    for (double theta : {0.0, 30.0, 50.0, 70.0}) {
+      double expected = coat_over_lambert_albedo(std::cos(test::radians(theta)), eta, a);
+      vec3 albedo = e.albedo(ShadingContext{}, test::to_float(test::spherical(test::radians(theta), 0.0)), 16384);
+      CAPTURE(a);
+      CAPTURE(theta);
+      // The table's interpolation (within 0.011 of F for a smooth boundary, less at these angles)
+      // and the five-point quadrature of the interreflection.
+      CHECK(double(albedo.x) == doctest::Approx(expected).epsilon(0.01).scale(0.0));
+    }
+  }
+}
+
 TEST_CASE("a coat over a mix of bases is the mix of the coat over each, so each keeps its interreflections") {
   for (const char* model : {"energy_conserving", "weidlich_wilkie"}) {
     CAPTURE(model);
@@ -125,21 +130,15 @@ TEST_CASE("a coat over a mix of bases is the mix of the coat over each, so each 
       CHECK(over_mix.pdf(ctx, wi, wo) == written_out.pdf(ctx, wi, wo));
     }
   }
-  // In the energy-conserving model each tile is the closed form of a coat over its own base (the
-  // test above): a (1 - R) / (1 - a R) of the light that enters, not a (1 - R) without the
-  // interreflections of a coat over something that is not one base.
-  const double eta = 1.5;
-  double f_avg = 0.0;
-  const int n = 200000;
-  for (int i = 0; i < n; ++i) f_avg += 2.0 * test::fresnel_reference((i + 0.5) / n, eta) * ((i + 0.5) / n) / n;
-  const double r_internal = 1.0 - (1.0 - f_avg) / (eta * eta);
+  // In the energy-conserving model each tile is the closed form of a coat over its own base
+  // (coat_over_lambert_albedo): a (1 - R) / (1 - a R) of the light that enters, not a (1 - R)
+  // without the interreflections of a coat over something that is not one base.
   const cpu::Evaluator e = test::evaluator_from_text(coat_over_checker(0.2, 0.8, true, "energy_conserving"));
   for (const auto& tile : {std::pair{glm::vec2(0.1f, 0.1f), 0.2}, std::pair{glm::vec2(0.3f, 0.1f), 0.8}}) {
     const double a = tile.second;
     ShadingContext ctx;
     ctx.uv = tile.first;
-    const double f0 = test::fresnel_reference(1.0, eta);
-    const double expected = f0 + (1.0 - f0) * a * (1.0 - r_internal) / (1.0 - a * r_internal);
+    const double expected = coat_over_lambert_albedo(1.0, 1.5, a);
     CAPTURE(a);
     CHECK(double(e.albedo(ctx, vec3(0.0f, 0.0f, 1.0f), 16384).x) == doctest::Approx(expected).epsilon(0.01));
   }
