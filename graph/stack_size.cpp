@@ -13,7 +13,8 @@ StackSize measure_stack(const Graph& graph) {
   // structural link left out (an error reported elsewhere) counts as nothing.
   // `leaves`: the layers and substrates a layer over the node would lie on, one per stack a mix
   // blends (compile.cpp hands a layer over a mix down into each of them).
-  std::vector<int> lobes(graph.size(), 0), entries(graph.size(), 0), leaves(graph.size(), 1);
+  // `longest`: the entries of the longest part below the node (a layer's part runs on down its base).
+  std::vector<int> lobes(graph.size(), 0), entries(graph.size(), 0), leaves(graph.size(), 1), longest(graph.size(), 0);
   for (size_t i : graph.topological_order()) {
     if (!graph.used(i)) continue;
     const NodeDecl& decl = graph.decl(i);
@@ -44,7 +45,10 @@ StackSize measure_stack(const Graph& graph) {
           lobes[i] += lobes[b.node];
           entries[i] += entries[b.node];
           if (decl.kind != NodeKind::Layer) leaves[i] += leaves[b.node];
+          longest[i] = std::max(longest[i], longest[b.node]);
         }
+        if (decl.kind == NodeKind::Layer || decl.kind == NodeKind::Substrate)
+          longest[i] = std::min(longest[i] + 1, kMaxStackEntries + 1);
         leaves[i] = std::min(std::max(leaves[i], 1), kMaxStackEntries + 1);
         break;
       }
@@ -60,7 +64,13 @@ StackSize measure_stack(const Graph& graph) {
   }
   size.lobes = lobes[graph.surface()];
   size.entries = entries[graph.surface()];
+  size.parts = leaves[graph.surface()];
+  size.longest_part = longest[graph.surface()];
   return size;
+}
+
+int glsl_loop_entries(const StackSize& size) {
+  return size.entries > kGlslUnrolledEntries && size.parts > 1 ? size.longest_part : size.entries;
 }
 
 bool check_stack_size(const Graph& graph, const std::string& file, const std::string& material_pointer,
@@ -100,12 +110,11 @@ void warn_glsl_unrolling(int entries, const std::string& file, const std::string
                          Diagnostics& diagnostics) {
   if (entries <= kGlslUnrolledEntries) return;
   diagnostics.warning(file, material_pointer + "/surface",
-                      "the stack compiles to " + std::to_string(entries) + " entries, more than the " +
-                          std::to_string(kGlslUnrolledEntries) +
+                      "a chain of layers down to a substrate compiles to " + std::to_string(entries) +
+                          " entries, more than the " + std::to_string(kGlslUnrolledEntries) +
                           " iterations GLSL compilers unroll a loop for: its GLSL module keeps the composition's "
-                          "loops and compiles slowly (minutes on Mesa's llvmpipe)",
-                      "give selects fewer distinct stacks (consecutive places naming one stack compile once), or "
-                      "split the material");
+                          "loops over it and compiles slowly (minutes on Mesa's llvmpipe)",
+                      "use fewer layers in one stack, or split the material");
 }
 
 }  // namespace lamina

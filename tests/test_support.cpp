@@ -61,6 +61,19 @@ std::string select_of_layers(int stacks) {
       .dump();
 }
 
+std::string chain_of_layers(int layers) {
+  nlohmann::json nodes = nlohmann::json::array(
+      {{{"id", "varnish"}, {"type", "interface/dielectric"}, {"ior", 1.5}, {"roughness_deg", 4.0}},
+       {{"id", "base"}, {"type", "substrate/lambert"}, {"albedo", {0.5, 0.4, 0.3}}}});
+  for (int k = 0; k < layers; ++k)
+    nodes.push_back({{"id", "coat_" + std::to_string(k)},
+                     {"type", "layer"},
+                     {"interface", "@varnish"},
+                     {"base", k + 1 < layers ? "@coat_" + std::to_string(k + 1) : std::string("@base")}});
+  return nlohmann::json{{"format", 1}, {"materials", {{{"name", "coats"}, {"surface", "@coat_0"}, {"nodes", nodes}}}}}
+      .dump();
+}
+
 TempDir::TempDir() {
   static std::atomic<int> counter{0};
   path_ = std::filesystem::temp_directory_path() /

@@ -37,6 +37,9 @@ std::vector<std::string> listing(const std::filesystem::path& dir);
 // layered stacks (a varnish over a Lambertian colour each) by Voronoi cells, which compiles to
 // 3 stacks - 1 entries (2 per stack and a chain of stacks - 1 mixes).
 std::string select_of_layers(int stacks);
+// A material file whose one stack is `layers` varnish layers over a Lambertian base (layers + 1
+// entries, one part).
+std::string chain_of_layers(int layers);
 
 // A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {

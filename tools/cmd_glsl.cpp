@@ -33,18 +33,19 @@ struct GlslOptions {
 fs::path default_side_file(const std::string& output) { return fs::path(output).replace_extension(".uniforms.json"); }
 
 // What makes the module's loops stay loops in GLSL compilers (graph/limits.h,
-// kGlslUnrolledEntries): a stack longer than they unroll, and a stack shorter than the module's
-// longest, as the module's arrays are as long as the longest and Mesa forces a loop open only when
-// its trip count is the length of the array it indexes. indices[i]: program i's material in the file.
+// kGlslUnrolledEntries): a part longer than they unroll (glsl::unrolled_entries), and a stack
+// evaluated whole but shorter than the module's arrays (the longest stack or part), as Mesa forces
+// a loop open only when its trip count is the length of the array it indexes (a stack evaluated by
+// parts loops over its parts anyway). indices[i]: program i's material in the file.
 void warn_about_unrolling(const std::string& file, const std::vector<Program>& programs,
                           const std::vector<size_t>& indices) {
-  size_t longest = 0;
-  for (const Program& p : programs) longest = std::max(longest, p.stack.size());
+  int longest = 0;
+  for (const Program& p : programs) longest = std::max(longest, glsl::unrolled_entries(p));
   Diagnostics advice;
   for (size_t i = 0; i < programs.size(); ++i) {
     const std::string material = "/materials/" + std::to_string(indices[i]);
-    warn_glsl_unrolling(int(programs[i].stack.size()), file, material, advice);
-    if (programs[i].stack.size() < longest)
+    warn_glsl_unrolling(glsl::unrolled_entries(programs[i]), file, material, advice);
+    if (!glsl::evaluates_by_parts(programs[i]) && int(programs[i].stack.size()) < longest)
       advice.warning(file, material + "/surface",
                      "the stack compiles to " + std::to_string(programs[i].stack.size()) +
                          " entries in a module whose longest has " + std::to_string(longest) +

@@ -58,8 +58,8 @@ Checked check_input(const std::filesystem::path& file, const AssetPolicy& policy
   CheckedFile checked = check_text(text, file.string(), policy);
   for (size_t i = 0; i < checked.graphs.size(); ++i)
     if (checked.graphs[i])
-      warn_glsl_unrolling(measure_stack(*checked.graphs[i]).entries, file.string(), "/materials/" + std::to_string(i),
-                          checked.diagnostics);
+      warn_glsl_unrolling(glsl_loop_entries(measure_stack(*checked.graphs[i])), file.string(),
+                          "/materials/" + std::to_string(i), checked.diagnostics);
   out.diagnostics = std::move(checked.diagnostics);
   out.materials = checked.document.materials.size();
   out.summary = plural(out.materials, "material");

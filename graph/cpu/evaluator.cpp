@@ -9,7 +9,6 @@
 #include "graph/kernel_stack.h"
 #include "graph/lobes.h"
 #include "graph/node_decl.h"
-#include "graph/registers.h"
 
 // Everything about the model lives in the kernels' composition (nodes/kernels/stack.glsl): this
 // file turns a Program into the arrays it walks, resolves a material's parameters once when
@@ -95,8 +94,8 @@ Evaluator::Evaluator(Program program) : program_(std::move(program)) {
       throw std::logic_error("Evaluator: an operation of '" + program_.name + "' cannot run");
   if (!program_.textured() && count_ > 0) {
     fixed_.resize(size_t(count_));
-    k::lamina_stack_resolve(count_, entries_.data(), constants_.data(), program_.clamp_lower_roughness, program_.model,
-                            fixed_.data());
+    k::lamina_stack_resolve(count_, entries_.data(), constants_.data(), 1.0f, program_.clamp_lower_roughness,
+                            program_.model, fixed_.data());
   }
 }
 
@@ -105,20 +104,11 @@ void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point, bool unt
   for (const TextureOp& op : program_.ops) op.decl->run(op, ctx, r);
   std::array<k::LaminaInputs, kMaxStackEntries> inputs;
   for (int i = 0; i < count_; ++i) {
-    const StackEntry& s = program_.stack[size_t(i)];
     k::LaminaInputs& x = inputs[size_t(i)];
-    x = constants_[size_t(i)];
-    if (s.colour0.linked()) x.colour0 = read_vec3(s.colour0, r);
-    if (s.colour1.linked()) x.colour1 = read_vec3(s.colour1, r);
-    if (s.colour2.linked()) x.colour2 = read_vec3(s.colour2, r);
-    if (s.scalar_x.linked()) x.scalars.x = read_float(s.scalar_x, r);
-    if (s.scalar_y.linked()) x.scalars.y = read_float(s.scalar_y, r);
-    if (s.scalar_z.linked()) x.scalars.z = read_float(s.scalar_z, r);
-    if (s.scalar_w.linked()) x.scalars.w = read_float(s.scalar_w, r);
-    if (s.normal.linked()) x.normal = read_vec3(s.normal, r);
+    x = kernel_inputs(program_.stack[size_t(i)], constants_[size_t(i)], r);
     if (untilted) x.normal = vec3(0.0f, 0.0f, glm::length(x.normal));
   }
-  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), program_.clamp_lower_roughness, program_.model,
+  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), 1.0f, program_.clamp_lower_roughness, program_.model,
                           point.params_.data());
   point.own_params_ = true;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -100,6 +101,8 @@ class MaterialEmitter final : public OpWriter {
       : p_(program), o_(options), mi_(out), module_code_(module_code) {
     mi_.material = p_.name;
     mi_.prefix = "lamina_" + name_part(p_.name);
+    by_parts_ = evaluates_by_parts(p_);
+    if (by_parts_) blend_ = split_blend(p_, !o_.uniforms);
     if (o_.uniforms) {
       mi_.block = mi_.prefix + "_block";
       mi_.instance = mi_.prefix + "_u";
@@ -157,6 +160,8 @@ class MaterialEmitter final : public OpWriter {
   std::string fn(const std::string& what) const { return mi_.prefix + "_" + what; }
   std::string count() const { return fn("count"); }
   std::string entries() const { return fn("entries"); }
+  // By parts: the number of parts, their counts and entries (LAMINA_STACK apart), and the blend.
+  std::string parts() const { return fn("parts") + ", " + fn("part_counts") + ", " + fn("part_entries"); }
   std::string clamp_flag() const { return p_.clamp_lower_roughness ? "true" : "false"; }
   // An untextured material in an inlined module: its parameters are constants, resolved here by
   // the kernels the CPU runs (to the bit), so the module holds them instead of their inputs.
@@ -191,7 +196,54 @@ class MaterialEmitter final : public OpWriter {
 
   // --- the stack ------------------------------------------------------------------------------------
 
+  static void entry_literal(std::ostringstream& s, const kernels::LaminaEntry& e) {
+    s << "LaminaEntry(" << e.kind << ", " << e.model << ", " << e.medium << ", " << e.distribution << ", " << e.fresnel
+      << ", " << e.degrees << ", " << e.parent << ", " << e.side << ", " << e.first << ", " << e.second << ")";
+  }
+
+  // A material evaluated by parts: its blend, and its parts' entries, part k from k LAMINA_STACK on.
+  void emit_parts(std::ostringstream& s) {
+    const kernels::LaminaEntry unused{kernels::LAMINA_MIX, 0, 0, 0, 0, 0, -1, 0, -1, -1};
+    s << "// The stack, " << p_.stack.size() << " entries, as the blend of its " << blend_.parts.size()
+      << " parts (nodes/kernels/stack.glsl): LaminaEntry(kind,\n// model, medium, distribution, fresnel, degrees, "
+         "parent, side, first, second), as stack.glsl defines them.\n";
+    s << "const int " << fn("blend_count") << " = " << blend_.entries.size() << ";\n";
+    s << "const LaminaEntry " << fn("blend") << "[LAMINA_BLEND] = LaminaEntry[LAMINA_BLEND](\n";
+    for (size_t i = 0; i < blend_length_; ++i) {
+      const bool used = i < blend_.entries.size();
+      s << "    ";
+      entry_literal(s, used ? blend_.entries[i] : unused);
+      s << (i + 1 < blend_length_ ? "," : "") << "  // "
+        << (used ? std::to_string(i) + ": " + what_entry(p_.stack[size_t(blend_.whole[i])]) : std::string("unused"))
+        << "\n";
+    }
+    s << ");\n";
+    s << "const int " << fn("parts") << " = " << blend_.parts.size() << ";\n";
+    s << "const int " << fn("part_counts") << "[LAMINA_PARTS] = int[LAMINA_PARTS](";
+    for (size_t k = 0; k < parts_length_; ++k)
+      s << (k ? ", " : "") << (k < blend_.parts.size() ? blend_.parts[k].count : 0);
+    s << ");\n";
+    s << "const LaminaEntry " << fn("part_entries")
+      << "[LAMINA_PARTS * LAMINA_STACK] = LaminaEntry[LAMINA_PARTS * LAMINA_STACK](\n";
+    for (size_t k = 0; k < parts_length_; ++k) {
+      std::vector<kernels::LaminaEntry> part;
+      if (k < blend_.parts.size()) part = blend_.part_entries(p_, k, !o_.uniforms);
+      for (size_t j = 0; j < stack_length_; ++j) {
+        const bool used = j < part.size();
+        s << "    ";
+        entry_literal(s, used ? part[j] : unused);
+        const bool last = k + 1 == parts_length_ && j + 1 == stack_length_;
+        s << (last ? "" : ",") << "  // part " << k << ", "
+          << (used ? std::to_string(j) + ": " + what_entry(p_.stack[size_t(blend_.parts[k].first) + j])
+                   : std::string("unused"))
+          << "\n";
+      }
+    }
+    s << ");\n\n";
+  }
+
   void emit_entries(std::ostringstream& s) {
+    if (by_parts_) return emit_parts(s);
     const size_t n = p_.stack.size();
     s << "// The stack, depth first from the surface: LaminaEntry(kind, model, medium, distribution,\n"
          "// fresnel, degrees, parent, side, first, second), as nodes/kernels/stack.glsl defines them.\n";
@@ -209,12 +261,104 @@ class MaterialEmitter final : public OpWriter {
     s << ");\n\n";
   }
 
+  // Every member of resolved parameters q as assignments to `at` + member.
+  static void params_literal(std::ostringstream& s, const std::string& at, const kernels::LaminaParams& q) {
+    s << at << "n_above = " << float_literal(q.n_above) << ";\n"
+      << at << "m_above = " << float_literal(q.m_above) << ";\n"
+      << at << "ior = " << float_literal(q.ior) << ";\n"
+      << at << "eta = " << float_literal(q.eta) << ";\n"
+      << at << "m = " << float_literal(q.m) << ";\n"
+      << at << "thickness = " << float_literal(q.thickness) << ";\n"
+      << at << "weight = " << float_literal(q.weight) << ";\n"
+      << at << "share = " << float_literal(q.share) << ";\n"
+      << at << "sigma = " << float_literal(q.sigma) << ";\n"
+      << at << "absorption = " << vec3_literal(q.absorption) << ";\n"
+      << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
+      << at << "n = " << vec3_literal(q.n) << ";\n"
+      << at << "k = " << vec3_literal(q.k) << ";\n"
+      << at << "normal = " << vec3_literal(q.normal) << ";\n"
+      << at << "frame_x = " << vec3_literal(q.frame_x) << ";\n"
+      << at << "frame_y = " << vec3_literal(q.frame_y) << ";\n"
+      << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
+      << at << "forward = " << vec3_literal(q.forward) << ";\n"
+      << at << "grid = " << vec2_literal(q.grid) << ";\n"
+      << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
+      << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
+      << at << "exit_cut = " << vec2_literal(q.exit_cut) << ";\n"
+      << at << "trap_ramp = " << vec3_literal(q.trap_ramp) << ";\n"
+      << at << "trap_angles = " << vec2_literal(q.trap_angles) << ";\n"
+      << at << "trap_near = " << vec3_literal(q.trap_near) << ";\n"
+      << at << "trap_far = " << vec3_literal(q.trap_far) << ";\n"
+      << at << "spread_own = " << float_literal(q.spread_own) << ";\n"
+      << at << "arrival_y = " << float_literal(q.arrival_y) << ";\n";
+  }
+
+  // Where entry i's inputs go: an array of the whole stack, or by parts the blend's (a mix of it)
+  // or its part's, from k LAMINA_STACK on; empty for none (a part's first entry in the blend).
+  std::vector<std::string> input_targets() const {
+    std::vector<std::string> at(p_.stack.size());
+    if (!by_parts_) {
+      for (size_t i = 0; i < at.size(); ++i) at[i] = "inputs[" + std::to_string(i) + "]";
+      return at;
+    }
+    for (size_t b = 0; b < blend_.entries.size(); ++b)
+      if (blend_.entries[b].kind == kernels::LAMINA_MIX)
+        at[size_t(blend_.whole[b])] = "blend_inputs[" + std::to_string(b) + "]";
+    for (size_t k = 0; k < blend_.parts.size(); ++k)
+      for (int j = 0; j < blend_.parts[k].count; ++j)
+        at[size_t(blend_.parts[k].first + j)] = "inputs[" + std::to_string(k * stack_length_ + size_t(j)) + "]";
+    return at;
+  }
+
+  // An untextured material evaluated by parts: its shares and parts' parameters, resolved by the
+  // C++ kernels (whose arrays hold LAMINA_STACK = kMaxStackEntries entries per part).
+  void fixed_parts_literal(std::ostringstream& s) {
+    const size_t stride = size_t(kMaxStackEntries), most_parts = size_t(kMaxLobes);
+    std::vector<kernels::LaminaInputs> blend_inputs(stride);
+    for (size_t b = 0; b < blend_.entries.size(); ++b)
+      blend_inputs[b] = kernel_constants(p_.stack[size_t(blend_.whole[b])], true);
+    std::vector<float> shares(stride, 0.0f);
+    kernels::lamina_blend_shares(int(blend_.entries.size()), blend_.entries.data(), blend_inputs.data(), shares.data());
+    std::vector<kernels::LaminaEntry> entries(most_parts * stride);
+    std::vector<kernels::LaminaInputs> inputs(entries.size());
+    std::vector<int> counts(most_parts, 0);
+    std::vector<float> share(most_parts, 0.0f);
+    for (size_t k = 0; k < blend_.parts.size(); ++k) {
+      const std::vector<kernels::LaminaEntry> part = blend_.part_entries(p_, k, true);
+      counts[k] = int(part.size());
+      share[k] = shares[size_t(blend_.parts[k].blend)];
+      for (size_t j = 0; j < part.size(); ++j) {
+        entries[k * stride + j] = part[j];
+        inputs[k * stride + j] = kernel_constants(p_.stack[size_t(blend_.parts[k].first) + j], true);
+      }
+    }
+    auto resolved = std::make_unique<kernels::LaminaPoint>();
+    kernels::lamina_blend_resolve(int(blend_.parts.size()), counts.data(), entries.data(), inputs.data(), share.data(),
+                                  p_.clamp_lower_roughness, p_.model, *resolved);
+    for (size_t k = 0; k < blend_.parts.size(); ++k) {
+      s << "  point.share[" << k << "] = " << float_literal(share[k]) << ";\n";
+      for (int j = 0; j < blend_.parts[k].count; ++j) {
+        s << "  // part " << k << ", " << j << ": " << what_entry(p_.stack[size_t(blend_.parts[k].first + j)]) << "\n";
+        params_literal(s, "  point.parts[" + std::to_string(k * stack_length_ + size_t(j)) + "].",
+                       resolved->parts[k * stride + size_t(j)]);
+      }
+    }
+  }
+
   std::string emit_resolve() {
     std::ostringstream s;
     s << "// Every entry's parameters at the shading point ctx.\n";
-    s << "void " << fn("resolve") << "(LaminaContext ctx, out LaminaParams params[LAMINA_STACK]) {\n";
+    if (by_parts_)
+      s << "void " << fn("resolve") << "(LaminaContext ctx, out LaminaPoint point) {\n";
+    else
+      s << "void " << fn("resolve") << "(LaminaContext ctx, out LaminaParams params[LAMINA_STACK]) {\n";
     if (fixed()) {
       // Resolved once, by the C++ kernels, into constants.
+      if (by_parts_) {
+        fixed_parts_literal(s);
+        s << "}\n\n";
+        return s.str();
+      }
       std::vector<kernels::LaminaEntry> e;
       std::vector<kernels::LaminaInputs> x;
       for (const StackEntry& entry : p_.stack) {
@@ -222,40 +366,11 @@ class MaterialEmitter final : public OpWriter {
         x.push_back(kernel_constants(entry, true));
       }
       std::vector<kernels::LaminaParams> params(p_.stack.size());
-      kernels::lamina_stack_resolve(int(e.size()), e.data(), x.data(), p_.clamp_lower_roughness, p_.model,
+      kernels::lamina_stack_resolve(int(e.size()), e.data(), x.data(), 1.0f, p_.clamp_lower_roughness, p_.model,
                                     params.data());
       for (size_t i = 0; i < params.size(); ++i) {
-        const kernels::LaminaParams& q = params[i];
-        const std::string at = "  params[" + std::to_string(i) + "].";
         s << "  // " << i << ": " << what_entry(p_.stack[i]) << "\n";
-        s << at << "n_above = " << float_literal(q.n_above) << ";\n"
-          << at << "m_above = " << float_literal(q.m_above) << ";\n"
-          << at << "ior = " << float_literal(q.ior) << ";\n"
-          << at << "eta = " << float_literal(q.eta) << ";\n"
-          << at << "m = " << float_literal(q.m) << ";\n"
-          << at << "thickness = " << float_literal(q.thickness) << ";\n"
-          << at << "weight = " << float_literal(q.weight) << ";\n"
-          << at << "share = " << float_literal(q.share) << ";\n"
-          << at << "sigma = " << float_literal(q.sigma) << ";\n"
-          << at << "absorption = " << vec3_literal(q.absorption) << ";\n"
-          << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
-          << at << "n = " << vec3_literal(q.n) << ";\n"
-          << at << "k = " << vec3_literal(q.k) << ";\n"
-          << at << "normal = " << vec3_literal(q.normal) << ";\n"
-          << at << "frame_x = " << vec3_literal(q.frame_x) << ";\n"
-          << at << "frame_y = " << vec3_literal(q.frame_y) << ";\n"
-          << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
-          << at << "forward = " << vec3_literal(q.forward) << ";\n"
-          << at << "grid = " << vec2_literal(q.grid) << ";\n"
-          << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
-          << at << "cone_etas = " << vec3_literal(q.cone_etas) << ";\n"
-          << at << "exit_cut = " << vec2_literal(q.exit_cut) << ";\n"
-          << at << "trap_ramp = " << vec3_literal(q.trap_ramp) << ";\n"
-          << at << "trap_angles = " << vec2_literal(q.trap_angles) << ";\n"
-          << at << "trap_near = " << vec3_literal(q.trap_near) << ";\n"
-          << at << "trap_far = " << vec3_literal(q.trap_far) << ";\n"
-          << at << "spread_own = " << float_literal(q.spread_own) << ";\n"
-          << at << "arrival_y = " << float_literal(q.arrival_y) << ";\n";
+        params_literal(s, "  params[" + std::to_string(i) + "].", params[i]);
       }
       s << "}\n\n";
       return s.str();
@@ -265,11 +380,16 @@ class MaterialEmitter final : public OpWriter {
       op.decl->emit_glsl(op, *this);
     }
     std::ostringstream inputs;
-    inputs << "  LaminaInputs inputs[LAMINA_STACK];\n";
+    if (by_parts_)
+      inputs << "  LaminaInputs blend_inputs[LAMINA_BLEND];\n  LaminaInputs inputs[LAMINA_PARTS * LAMINA_STACK];\n";
+    else
+      inputs << "  LaminaInputs inputs[LAMINA_STACK];\n";
+    const std::vector<std::string> targets = input_targets();
     for (size_t i = 0; i < p_.stack.size(); ++i) {
+      if (targets[i].empty()) continue;
       const StackEntry& e = p_.stack[i];
       const kernels::LaminaInputs folded = kernel_constants(e, !o_.uniforms);
-      const std::string at = "  inputs[" + std::to_string(i) + "].";
+      const std::string at = "  " + targets[i] + ".";
       inputs << "  // " << i << ": " << what_entry(e) << "\n";
       inputs << at << "colour0 = " << input(e.colour0, folded.colour0) << ";\n";
       inputs << at << "colour1 = " << input(e.colour1, folded.colour1) << ";\n";
@@ -280,8 +400,17 @@ class MaterialEmitter final : public OpWriter {
       inputs << at << "normal = " << input(e.normal, folded.normal) << ";\n";
     }
     s << ops_.str() << inputs.str();
-    s << "  lamina_stack_resolve(" << count() << ", " << entries() << ", inputs, " << clamp_flag() << ", " << p_.model
-      << ", params);\n}\n\n";
+    if (by_parts_) {
+      s << "  float shares[LAMINA_BLEND];\n  lamina_blend_shares(" << fn("blend_count") << ", " << fn("blend")
+        << ", blend_inputs, shares);\n  float share[LAMINA_PARTS];\n";
+      for (size_t k = 0; k < blend_.parts.size(); ++k)
+        s << "  share[" << k << "] = shares[" << blend_.parts[k].blend << "];\n";
+      s << "  lamina_blend_resolve(" << parts() << ", inputs, share, " << clamp_flag() << ", " << p_.model
+        << ", point);\n}\n\n";
+      return s.str();
+    }
+    s << "  lamina_stack_resolve(" << count() << ", " << entries() << ", inputs, 1.0f, " << clamp_flag() << ", "
+      << p_.model << ", params);\n}\n\n";
     return s.str();
   }
 
@@ -298,34 +427,47 @@ class MaterialEmitter final : public OpWriter {
   // --- the functions: the kernels' composition on the resolved parameters ---------------------------
 
   void emit_functions(std::ostringstream& s) {
+    // The kernels' composition over the whole stack, or by parts over its blend.
+    const std::string stack = by_parts_ ? parts() + ", point" : count() + ", " + entries() + ", point.params";
     const std::string select =
-        "  float weight[LAMINA_STACK];\n  vec3 v[LAMINA_STACK];\n  bool valid[LAMINA_STACK];\n"
-        "  lamina_stack_select(" +
-        count() + ", " + entries() + ", point.params, wo, weight, v, valid);\n";
-    const std::string stack = count() + ", " + entries() + ", point.params";
+        by_parts_ ? "  LaminaPartsSelection selection;\n  lamina_blend_select(" + stack + ", wo, selection);\n"
+                  : "  float weight[LAMINA_STACK];\n  vec3 v[LAMINA_STACK];\n  bool valid[LAMINA_STACK];\n"
+                    "  lamina_stack_select(" +
+                        stack + ", wo, weight, v, valid);\n";
+    const std::string eval = by_parts_ ? "lamina_blend_eval(" + stack + ", " + std::to_string(p_.model) + ", wi, wo)"
+                                       : std::string(composition()) + "(" + stack + ", wi, wo)";
+    const std::string pdf = by_parts_ ? "lamina_blend_pdf(" + stack + ", selection, wi, wo)"
+                                      : "lamina_stack_pdf(" + stack + ", weight, v, valid, wi, wo)";
     s << "// \"" << p_.name
       << "\" at one shading context: its stack's parameters, resolved once (textures read,\n"
          "// tables looked up) for any number of directions.\n";
     s << "LaminaPoint " << fn("point") << "(LaminaContext ctx) {\n  LaminaPoint point;\n  " << fn("resolve")
-      << "(ctx, point.params);\n  return point;\n}\n\n";
+      << (by_parts_ ? "(ctx, point)" : "(ctx, point.params)") << ";\n  return point;\n}\n\n";
     s << "// The BRDF f(wi, wo) of \"" << p_.name << "\", without the cosine; 0 below the horizon.\n";
     s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
-    s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
+    s << "  return " << eval << ";\n}\n\n";
     s << "// The density (per solid angle) with which " << fn("sample") << " draws wi.\n";
     s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << select;
-    s << "  return lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n}\n\n";
+    s << "  return " << pdf << ";\n}\n\n";
     s << "// Draws wi for wo: u_layer chooses the lobe, u the direction in it. Returns f(wi, wo); pdf is\n"
          "// the density of wi over all lobes, 0 (with wi = 0) when nothing was drawn.\n";
     s << call("vec3 " + fn("sample"),
               {"vec3 wo", "vec2 u", "float u_layer", "LaminaPoint point", "out vec3 wi", "out float pdf"}, " {");
     s << "  wi = vec3(0.0f);\n  pdf = 0.0f;\n  if (wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n" << select;
-    s << "  int chosen = lamina_stack_choose(" << count() << ", weight, u_layer);\n";
-    s << "  vec3 d = lamina_stack_sample(" << count() << ", " << entries() << ", point.params, v, chosen, u);\n";
+    if (by_parts_) {
+      s << "  int chosen = lamina_blend_choose(" << fn("parts") << ", " << fn("part_counts")
+        << ", selection, u_layer);\n";
+      s << "  vec3 d = lamina_blend_sample(" << fn("part_counts") << ", " << fn("part_entries")
+        << ", point, selection, chosen, u);\n";
+    } else {
+      s << "  int chosen = lamina_stack_choose(" << count() << ", weight, u_layer);\n";
+      s << "  vec3 d = lamina_stack_sample(" << count() << ", " << entries() << ", point.params, v, chosen, u);\n";
+    }
     s << "  if (d.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n  wi = d;\n";
-    s << "  pdf = lamina_stack_pdf(" << stack << ", weight, v, valid, wi, wo);\n";
-    s << "  return " << composition() << "(" << stack << ", wi, wo);\n}\n\n";
+    s << "  pdf = " << pdf << ";\n";
+    s << "  return " << eval << ";\n}\n\n";
     // The same at a context, through the point, and at a texture coordinate, through the context.
     for (const char* where : {"LaminaContext ctx", "vec2 uv"}) {
       const bool uv = where[0] == 'v';
@@ -346,8 +488,12 @@ class MaterialEmitter final : public OpWriter {
 
  public:
   size_t stack_length_ = 1;  // LAMINA_STACK of the module
+  size_t parts_length_ = 1;  // LAMINA_PARTS
+  size_t blend_length_ = 1;  // LAMINA_BLEND
 
  private:
+  bool by_parts_ = false;  // evaluates_by_parts
+  StackBlend blend_;       // its blend, by parts
   const Program& p_;
   const Options& o_;
   MaterialInterface& mi_;
@@ -482,6 +628,14 @@ const char* composition_function(int model) {
   return model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "lamina_stack_eval_conserving" : "lamina_stack_eval";
 }
 
+bool evaluates_by_parts(const Program& program) {
+  return int(program.stack.size()) > kGlslUnrolledEntries && split_blend(program, true).parts.size() > 1;
+}
+
+int unrolled_entries(const Program& program) {
+  return evaluates_by_parts(program) ? split_blend(program, true).longest_part() : int(program.stack.size());
+}
+
 Module generate(std::span<const Program> programs, const Options& options) {
   if (programs.empty()) throw std::invalid_argument("GLSL back end: no material to generate");
   for (const Program& p : programs) validate(p);
@@ -489,12 +643,21 @@ Module generate(std::span<const Program> programs, const Options& options) {
   std::vector<std::string> bodies;
   std::set<std::string> prefixes;
   std::map<std::string, std::string> module_code;  // what texture nodes need once per module
-  size_t stack_length = 1;
-  for (const Program& p : programs) stack_length = std::max(stack_length, p.stack.size());
+  // The arrays' lengths: the longest stack's or part's, the most parts and the longest blend.
+  size_t stack_length = 1, parts_length = 1, blend_length = 1;
+  for (const Program& p : programs) {
+    stack_length = std::max(stack_length, size_t(unrolled_entries(p)));
+    if (!evaluates_by_parts(p)) continue;
+    const StackBlend blend = split_blend(p, true);
+    parts_length = std::max(parts_length, blend.parts.size());
+    blend_length = std::max(blend_length, blend.entries.size());
+  }
   for (const Program& p : programs) {
     module.materials.emplace_back();
     MaterialEmitter emitter(p, options, module.materials.back(), module_code);
     emitter.stack_length_ = stack_length;
+    emitter.parts_length_ = parts_length;
+    emitter.blend_length_ = blend_length;
     bodies.push_back(emitter.emit());
     if (!prefixes.insert(module.materials.back().prefix).second)
       throw std::invalid_argument("GLSL back end: materials '" + p.name + "' and another give the same GLSL prefix " +
@@ -513,13 +676,11 @@ Module generate(std::span<const Program> programs, const Options& options) {
   s << header(programs, module, options) << "\n";
   if (options.target == Target::Es300)
     s << "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp usampler2D;\n";
-  // The arrays of the kernels' composition hold the largest material's stack.
-  s << "#define LAMINA_STACK " << stack_length << "\n\n";
+  // The arrays of the kernels' composition hold the largest material's stack (or part), those of a
+  // blend the most parts and the longest blend; a point (LaminaPoint) holds them.
+  s << "#define LAMINA_STACK " << stack_length << "\n#define LAMINA_PARTS " << parts_length << "\n#define LAMINA_BLEND "
+    << blend_length << "\n\n";
   s << table << kernels;
-  s << "// ================================================================================\n"
-       "// A material's parameters at one shading context (lamina_NAME_point).\n"
-       "// ================================================================================\n\n"
-       "struct LaminaPoint {\n  LaminaParams params[LAMINA_STACK];\n};\n\n";
   s << code;
   module.source = s.str();
   return module;

@@ -93,6 +93,15 @@ Module generate(std::span<const Program> programs, const Options& options);
 // CPU evaluator chooses it.
 const char* composition_function(int model);
 
+// Whether a material's GLSL evaluates its stack as its blend of parts (nodes/kernels/stack.glsl),
+// one part at a time: when the stack has more entries than GLSL compilers unroll a loop for
+// (kGlslUnrolledEntries, graph/limits.h) and more than one part.
+bool evaluates_by_parts(const Program& program);
+
+// The length of the loops over entries that a material's GLSL runs: its stack's entries, or its
+// longest part's when it evaluates by parts.
+int unrolled_entries(const Program& program);
+
 // The uniform side file: materials, their block names, sizes, members (name, type, offset,
 // value, node, parameter) and samplers, and the module's tables with their texels, as JSON text.
 std::string interface_json(const Module& module, const Options& options);

@@ -12,7 +12,8 @@
 // no overloading, recursion, default arguments, swizzle assignment, inout, struct constructors or
 // struct initialisers (assign members one by one). Structs and arrays of them are fine; array and
 // struct parameters are written with the macros below, and an array parameter's size is always
-// LAMINA_STACK.
+// LAMINA_STACK, or for a blend of parts (stack.glsl) LAMINA_PARTS, LAMINA_PARTS * LAMINA_STACK or
+// LAMINA_BLEND.
 
 // The macros the kernels are written with. kernels.h defines them for C++ before it includes the
 // files; this is their GLSL meaning, which the GLSL back end embeds with the kernels:
@@ -23,8 +24,9 @@
 //                          a pointer to const)
 //   LAMINA_OUT_ARRAY(T)    an array parameter written: `out T` (`T`)
 // and LAMINA_STACK, the length of the arrays the stack composition (stack.glsl) works on: the
-// number of stack entries of the largest material in a GLSL module, defined by the back end before
-// the kernels (128 in C++, kMaxStackEntries).
+// number of stack entries of the largest material in a GLSL module (or of the longest part of a
+// blend), defined by the back end before the kernels (128 in C++, kMaxStackEntries), with
+// LAMINA_PARTS, the most parts a blend of the module has, and LAMINA_BLEND, its blend's entries.
 #ifndef LAMINA_FN
 #define LAMINA_FN
 #define LAMINA_OUT(T) out T

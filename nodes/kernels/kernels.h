@@ -12,8 +12,10 @@
 //   LAMINA_IN_ARRAY(T)    const T (an array parameter `const T name[N]` is a pointer to const)
 //   LAMINA_OUT_ARRAY(T)   T
 //   LAMINA_STACK          kMaxStackEntries (graph/limits.h), the length of the stack's arrays
-// The GLSL back end embeds the files in the order included below, after a `#define LAMINA_STACK`
-// and `precision highp float;` for ES.
+//   LAMINA_PARTS          kMaxLobes, the parts a blend may have (each part has a lobe)
+//   LAMINA_BLEND          kMaxStackEntries, the length of a blend's array of mixes and parts
+// The GLSL back end embeds the files in the order included below, after `#define LAMINA_STACK`,
+// `LAMINA_PARTS` and `LAMINA_BLEND` and `precision highp float;` for ES.
 //
 // Everything lands in lamina::kernels, which also sees all of glm (`using namespace glm`), as GLSL
 // code sees its built-ins: kernels::d_ggx(c, a), kernels::vec3, kernels::LAMINA_PI.
@@ -29,6 +31,8 @@
 #define LAMINA_IN_ARRAY(T) const T
 #define LAMINA_OUT_ARRAY(T) T
 #define LAMINA_STACK lamina::kMaxStackEntries
+#define LAMINA_PARTS lamina::kMaxLobes
+#define LAMINA_BLEND lamina::kMaxStackEntries
 
 namespace lamina::kernels {
 using namespace glm;
@@ -74,3 +78,5 @@ inline float lamina_albedo_texel(int x, int y) {
 #undef LAMINA_IN_ARRAY
 #undef LAMINA_OUT_ARRAY
 #undef LAMINA_STACK
+#undef LAMINA_PARTS
+#undef LAMINA_BLEND

@@ -1092,25 +1092,35 @@ LAMINA_FN vec2 lamina_tilt_weight(vec3 l, vec3 v, vec2 z_above) {
   return vec2(min(1.0f, l.z / z_above.x), min(1.0f, v.z / z_above.y));
 }
 
+// A mix's weight from its inputs: the weight itself, or a select's step (lamina_select_weight).
+LAMINA_FN float lamina_mix_weight(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaInputs) x) {
+  vec4 s = x.scalars;
+  return e.model == LAMINA_MIX_SELECT ? lamina_select_weight(s.x, x.colour0.x, s.y, s.w, s.z) : s.x;
+}
+
+// The share of a mix of weight w that goes to its first stack (side 0) or its second (side 1).
+LAMINA_FN float lamina_side_share(float weight, int side) { return side == 0 ? 1.0f - weight : weight; }
+
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
-// slope to the entries below it, a mix passes on what it received. clamp_lower: Elek's rule that
-// raises each slope to at least the one above it. model: LAMINA_MODEL_*; for the energy-conserving
-// one, bottom up, every entry's diffuse coefficient (lamina_diffuse_coefficient).
+// slope to the entries below it, a mix passes on what it received. share: the part of the surface
+// the stack covers (1 for a material's whole stack; a part's share of its blend, lamina_blend_*).
+// clamp_lower: Elek's rule that raises each slope to at least the one above it. model:
+// LAMINA_MODEL_*; for the energy-conserving one, bottom up, every entry's diffuse coefficient
+// (lamina_diffuse_coefficient).
 LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_STACK], bool clamp_lower, int model,
-                                    LAMINA_OUT_ARRAY(LaminaParams) params[LAMINA_STACK]) {
+                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_STACK], float share, bool clamp_lower,
+                                    int model, LAMINA_OUT_ARRAY(LaminaParams) params[LAMINA_STACK]) {
   for (int i = 0; i < count; ++i) {
     LaminaParams p;
     p.n_above = 1.0f;
     p.m_above = 0.0f;
-    p.share = 1.0f;
+    p.share = share;
     int parent = entries[i].parent;
     if (parent >= 0) {
       bool below_layer = entries[parent].kind == LAMINA_LAYER;
       p.n_above = below_layer ? params[parent].ior : params[parent].n_above;
       p.m_above = below_layer ? params[parent].m : params[parent].m_above;
-      float weight = params[parent].weight;
-      p.share = params[parent].share * (below_layer ? 1.0f : (entries[i].side == 0 ? 1.0f - weight : weight));
+      p.share = params[parent].share * (below_layer ? 1.0f : lamina_side_share(params[parent].weight, entries[i].side));
     }
     p.ior = 1.0f;
     p.eta = 1.0f;
@@ -1148,9 +1158,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
         p.thickness = inputs[i].scalars.z;
       }
     } else if (kind == LAMINA_MIX) {
-      bool chained = entries[i].model == LAMINA_MIX_SELECT;
-      vec4 x = inputs[i].scalars;
-      p.weight = chained ? lamina_select_weight(x.x, inputs[i].colour0.x, x.y, x.w, x.z) : x.x;
+      p.weight = lamina_mix_weight(entries[i], inputs[i]);
     } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
       // The metal's index relative to the layer above it (Elek's shader uses the absolute one);
       // n stays above 0.001, where the Fresnel equations stay finite.
@@ -1410,22 +1418,24 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
 // times the mix weights on its path; plus a floor of 1% of the mean, so every lobe stays
 // reachable; normalised. Per entry (0 for mixes): weight, v (wo in the entry's frame) and valid
 // (wo reaches it).
-LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wo,
-                                   LAMINA_OUT_ARRAY(float) weight[LAMINA_STACK], LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK],
-                                   LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
+// The selection's first step: each lobe's estimate (weight), v and valid, as above; returns the sum
+// of the estimates and the number of lobes wo reaches, from which lamina_selection_floor and
+// lamina_stack_floored_sum normalise them (over a whole stack, or over all the parts of a blend).
+LAMINA_FN vec2 lamina_stack_estimate(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                     LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wo,
+                                     LAMINA_OUT_ARRAY(float) weight[LAMINA_STACK],
+                                     LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK], LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
   float throughput[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
     // wo as handed to the entry, in the shading frame (a mix's frame is the shading frame).
     vec3 handed = wo;
     if (parent < 0) {
-      throughput[i] = 1.0f;
+      throughput[i] = params[i].share;
       valid[i] = wo.z > 0.0f;
     } else if (entries[parent].kind == LAMINA_MIX) {
-      float share = entries[i].side == 0 ? 1.0f - params[parent].weight : params[parent].weight;
       handed = v[parent];
-      throughput[i] = throughput[parent] * share;
+      throughput[i] = throughput[parent] * lamina_side_share(params[parent].weight, entries[i].side);
       valid[i] = valid[parent];
     } else {
       handed = vec3(0.0f);
@@ -1466,14 +1476,37 @@ LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
     weight[i] = estimate;
     total += estimate;
   }
-  if (valid_count == 0) return;
-  float floor_share = total > 0.0f ? 0.01f * total / float(valid_count) : 1.0f;
+  return vec2(total, float(valid_count));
+}
+
+// The floor every reachable lobe gets (1% of the mean estimate), from lamina_stack_estimate's sums.
+LAMINA_FN float lamina_selection_floor(vec2 totals) { return totals.x > 0.0f ? 0.01f * totals.x / totals.y : 1.0f; }
+
+// An entry's estimate with the floor if it is a reachable lobe.
+LAMINA_FN float lamina_floored_estimate(LAMINA_IN(LaminaEntry) e, bool valid, float estimate, float floor_share) {
+  return lamina_is_lobe(e) && valid ? estimate + floor_share : estimate;
+}
+
+// The sum of a stack's floored estimates, entry by entry.
+LAMINA_FN float lamina_stack_floored_sum(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                         LAMINA_IN_ARRAY(float) weight[LAMINA_STACK],
+                                         LAMINA_IN_ARRAY(bool) valid[LAMINA_STACK], float floor_share) {
   float sum = 0.0f;
-  for (int i = 0; i < count; ++i) {
-    if (lamina_is_lobe(entries[i]) && valid[i]) weight[i] += floor_share;
-    sum += weight[i];
-  }
-  for (int i = 0; i < count; ++i) weight[i] /= sum;
+  for (int i = 0; i < count; ++i) sum += lamina_floored_estimate(entries[i], valid[i], weight[i], floor_share);
+  return sum;
+}
+
+// The selection over a whole stack.
+LAMINA_FN void lamina_stack_select(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                   LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wo,
+                                   LAMINA_OUT_ARRAY(float) weight[LAMINA_STACK], LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK],
+                                   LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
+  vec2 totals = lamina_stack_estimate(count, entries, params, wo, weight, v, valid);
+  if (totals.y == 0.0f) return;
+  float floor_share = lamina_selection_floor(totals);
+  float sum = lamina_stack_floored_sum(count, entries, weight, valid, floor_share);
+  for (int i = 0; i < count; ++i)
+    weight[i] = lamina_floored_estimate(entries[i], valid[i], weight[i], floor_share) / sum;
 }
 
 // The share of a conductor lobe's samples (entry i, wo in its frame v) drawn cosine-weighted over
@@ -1634,4 +1667,199 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
   // A tilted lobe's direction may leave below the surface's horizon: none.
   if (!leaves || w.z <= 0.0f) return vec3(0.0f);
   return normalize(w);
+}
+
+// --- a blend of parts ----------------------------------------------------------------------------
+// Every mix of a compiled stack lies above every layer and substrate (compile.cpp hands a layer over
+// a mix down into each stack it blends), so a stack is its blend, the tree of mixes at its top, over
+// parts, each a chain of layers down to a substrate: f = sum over parts of share_k f_k, share_k the
+// product of the mix weights on the path to part k (lamina_side_share), f_k the part evaluated as a
+// stack of its own. That is the composition above, rearranged (it walks the mixes in the same
+// loops). A back end evaluates a long stack so, one part at a time, in loops over the parts that
+// copy a part into arrays of LAMINA_STACK entries, the longest part's length, so that the loops over
+// entries stay short: GLSL compilers unroll no loop of more than 32 iterations, and then compile the
+// whole stack's loops slowly (graph/limits.h, kGlslUnrolledEntries).
+// The arrays: the blend's entries (its mixes and its parts' first entries, each with its parent and
+// side in the blend) hold LAMINA_BLEND entries; part k's entries, parameters and selection hold
+// [k LAMINA_STACK, k LAMINA_STACK + counts[k]) of arrays of LAMINA_PARTS LAMINA_STACK entries.
+
+// A material's parameters at one shading point: its whole stack's (lamina_stack_resolve), or its
+// blend's parts' and their shares (lamina_blend_resolve). The blend's functions take the point
+// itself: handed an array of parameters, or a member of the point, Mesa's GLSL compiler copies it
+// into every inlined call, and llvmpipe then took minutes to compile Lavender Lepidolite.
+struct LaminaPoint {
+  LaminaParams params[LAMINA_STACK];
+  LaminaParams parts[LAMINA_PARTS * LAMINA_STACK];
+  float share[LAMINA_PARTS];
+};
+
+// The lobe selection over a blend's parts at one wo, per entry as lamina_stack_select's.
+struct LaminaPartsSelection {
+  float weight[LAMINA_PARTS * LAMINA_STACK];
+  vec3 v[LAMINA_PARTS * LAMINA_STACK];
+  bool valid[LAMINA_PARTS * LAMINA_STACK];
+};
+
+// Every blend entry's share of the surface, top down (a part's first entry holds the part's).
+LAMINA_FN void lamina_blend_shares(int count, LAMINA_IN_ARRAY(LaminaEntry) blend[LAMINA_BLEND],
+                                   LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_BLEND],
+                                   LAMINA_OUT_ARRAY(float) share[LAMINA_BLEND]) {
+  float weight[LAMINA_BLEND];
+  for (int i = 0; i < count; ++i) {
+    int parent = blend[i].parent;
+    weight[i] = blend[i].kind == LAMINA_MIX ? lamina_mix_weight(blend[i], inputs[i]) : 0.0f;
+    share[i] = parent < 0 ? 1.0f : share[max(parent, 0)] * lamina_side_share(weight[max(parent, 0)], blend[i].side);
+  }
+}
+
+// The parameters of every part (lamina_stack_resolve with the part's share).
+LAMINA_FN void lamina_blend_resolve(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                    LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_PARTS * LAMINA_STACK],
+                                    LAMINA_IN_ARRAY(float) share[LAMINA_PARTS], bool clamp_lower, int model,
+                                    LAMINA_OUT(LaminaPoint) point) {
+  for (int k = 0; k < parts; ++k) {
+    point.share[k] = share[k];
+    LaminaEntry e[LAMINA_STACK];
+    LaminaInputs x[LAMINA_STACK];
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      e[j] = entries[k * LAMINA_STACK + j];
+      x[j] = inputs[k * LAMINA_STACK + j];
+    }
+    LaminaParams p[LAMINA_STACK];
+    lamina_stack_resolve(counts[k], e, x, share[k], clamp_lower, model, p);
+    for (int j = 0; j < LAMINA_STACK; ++j) point.parts[k * LAMINA_STACK + j] = p[j];
+  }
+}
+
+// f(wi, wo) of the blend: its parts' f, each by the composition of the material's model, weighed by
+// their shares.
+LAMINA_FN vec3 lamina_blend_eval(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                 LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                 LAMINA_IN(LaminaPoint) point, int model, vec3 wi, vec3 wo) {
+  vec3 f = vec3(0.0f);
+  for (int k = 0; k < parts; ++k) {
+    LaminaEntry e[LAMINA_STACK];
+    LaminaParams p[LAMINA_STACK];
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      e[j] = entries[k * LAMINA_STACK + j];
+      p[j] = point.parts[k * LAMINA_STACK + j];
+    }
+    vec3 part = model == LAMINA_MODEL_ENERGY_CONSERVING ? lamina_stack_eval_conserving(counts[k], e, p, wi, wo)
+                                                        : lamina_stack_eval(counts[k], e, p, wi, wo);
+    f += point.share[k] * part;
+  }
+  return f;
+}
+
+// The lobe selection over all the blend's lobes (lamina_stack_select's, with the floor and the
+// normalisation over every part); an entry beyond its part's count gets weight 0, and the arrays
+// beyond the last part are left as they were.
+LAMINA_FN void lamina_blend_select(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                   LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                   LAMINA_IN(LaminaPoint) point, vec3 wo, LAMINA_OUT(LaminaPartsSelection) s) {
+  vec2 totals = vec2(0.0f);
+  for (int k = 0; k < parts; ++k) {
+    LaminaEntry e[LAMINA_STACK];
+    LaminaParams p[LAMINA_STACK];
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      e[j] = entries[k * LAMINA_STACK + j];
+      p[j] = point.parts[k * LAMINA_STACK + j];
+    }
+    float w[LAMINA_STACK];
+    vec3 wo_own[LAMINA_STACK];
+    bool reached[LAMINA_STACK];
+    totals += lamina_stack_estimate(counts[k], e, p, wo, w, wo_own, reached);
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      bool used = j < counts[k];
+      s.weight[k * LAMINA_STACK + j] = used ? w[j] : 0.0f;
+      s.v[k * LAMINA_STACK + j] = used ? wo_own[j] : vec3(0.0f);
+      s.valid[k * LAMINA_STACK + j] = used && reached[j];
+    }
+  }
+  if (totals.y == 0.0f) return;
+  float floor_share = lamina_selection_floor(totals);
+  float sum = 0.0f;
+  for (int k = 0; k < parts; ++k) {
+    LaminaEntry e[LAMINA_STACK];
+    float w[LAMINA_STACK];
+    bool reached[LAMINA_STACK];
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      e[j] = entries[k * LAMINA_STACK + j];
+      w[j] = s.weight[k * LAMINA_STACK + j];
+      reached[j] = s.valid[k * LAMINA_STACK + j];
+    }
+    sum += lamina_stack_floored_sum(counts[k], e, w, reached, floor_share);
+  }
+  for (int i = 0; i < parts * LAMINA_STACK; ++i)
+    s.weight[i] = lamina_floored_estimate(entries[i], s.valid[i], s.weight[i], floor_share) / sum;
+}
+
+// The density of wi under the blend's selection: the sum of its parts' (lamina_stack_pdf), whose
+// weights are already shares of the whole.
+LAMINA_FN float lamina_blend_pdf(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                 LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                 LAMINA_IN(LaminaPoint) point, LAMINA_IN(LaminaPartsSelection) s, vec3 wi,
+                                 vec3 wo) {
+  float pdf = 0.0f;
+  for (int k = 0; k < parts; ++k) {
+    LaminaEntry e[LAMINA_STACK];
+    LaminaParams p[LAMINA_STACK];
+    float w[LAMINA_STACK];
+    vec3 wo_own[LAMINA_STACK];
+    bool reached[LAMINA_STACK];
+    for (int j = 0; j < LAMINA_STACK; ++j) {
+      e[j] = entries[k * LAMINA_STACK + j];
+      p[j] = point.parts[k * LAMINA_STACK + j];
+      w[j] = s.weight[k * LAMINA_STACK + j];
+      wo_own[j] = s.v[k * LAMINA_STACK + j];
+      reached[j] = s.valid[k * LAMINA_STACK + j];
+    }
+    pdf += lamina_stack_pdf(counts[k], e, p, w, wo_own, reached, wi, wo);
+  }
+  return pdf;
+}
+
+// The entry (k LAMINA_STACK + its index in part k) whose lobe u_lobe picks by the selection
+// weights, in the order lamina_stack_choose reads a whole stack: the part where the running sum of
+// the parts' weights passes u_lobe, then the lobe in it; -1 if none can be drawn.
+LAMINA_FN int lamina_blend_choose(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                  LAMINA_IN(LaminaPartsSelection) s, float u_lobe) {
+  int part = -1;
+  float before = 0.0f;  // the weight of the parts before `part`
+  float cumulative = 0.0f;
+  bool found = false;
+  for (int k = 0; k < parts; ++k) {
+    float total = 0.0f;
+    for (int j = 0; j < LAMINA_STACK; ++j) total += j < counts[k] ? s.weight[k * LAMINA_STACK + j] : 0.0f;
+    if (!found && total > 0.0f) {
+      part = k;
+      before = cumulative;
+      cumulative += total;
+      found = u_lobe < cumulative;
+    }
+  }
+  if (part < 0) return -1;
+  float w[LAMINA_STACK];
+  for (int j = 0; j < LAMINA_STACK; ++j) w[j] = s.weight[part * LAMINA_STACK + j];
+  int chosen = lamina_stack_choose(counts[part], w, u_lobe - before);
+  return chosen < 0 ? -1 : part * LAMINA_STACK + chosen;
+}
+
+// A direction drawn from the lobe lamina_blend_choose chose (lamina_stack_sample in its part).
+LAMINA_FN vec3 lamina_blend_sample(LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                   LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                   LAMINA_IN(LaminaPoint) point, LAMINA_IN(LaminaPartsSelection) s, int chosen,
+                                   vec2 u) {
+  if (chosen < 0) return vec3(0.0f);
+  int k = chosen / LAMINA_STACK;
+  LaminaEntry e[LAMINA_STACK];
+  LaminaParams p[LAMINA_STACK];
+  vec3 wo_own[LAMINA_STACK];
+  for (int j = 0; j < LAMINA_STACK; ++j) {
+    e[j] = entries[k * LAMINA_STACK + j];
+    p[j] = point.parts[k * LAMINA_STACK + j];
+    wo_own[j] = s.v[k * LAMINA_STACK + j];
+  }
+  return lamina_stack_sample(counts[k], e, p, wo_own, chosen - k * LAMINA_STACK, u);
 }

@@ -4,10 +4,13 @@
 #include <nlohmann/json.hpp>
 
 #include "graph/compile.h"
+#include "graph/glsl/generator.h"
+#include "graph/kernel_stack.h"
 #include "graph/limits.h"
 #include "graph/load.h"
 #include "graph/lobes.h"
 #include "graph/stack_size.h"
+#include "random_stacks.h"
 #include "test_support.h"
 
 using namespace lamina;
@@ -183,18 +186,20 @@ TEST_CASE("the checker's count of a stack's size is what compiling it takes, for
   CHECK(materials > files.size() / 2);
 }
 
-TEST_CASE("a stack longer than GLSL compilers unroll is a warning at its surface, and one that fits is not") {
-  // The most stacks whose chain still fits: 3 stacks - 1 entries.
-  const int fitting = (kGlslUnrolledEntries + 1) / 3;
-  for (int stacks : {fitting, fitting + 1}) {
-    CAPTURE(stacks);
-    CheckedFile checked = check_text(test::select_of_layers(stacks), "tiles.json");
+TEST_CASE("a chain of layers longer than GLSL compilers unroll is a warning at its surface, and one that fits is not") {
+  // kGlslUnrolledEntries - 1 layers over a base fit; one more does not.
+  for (int layers : {kGlslUnrolledEntries - 1, kGlslUnrolledEntries}) {
+    CAPTURE(layers);
+    CheckedFile checked = check_text(test::chain_of_layers(layers), "coats.json");
     REQUIRE(checked.ok());
     REQUIRE(checked.graphs.front());
-    const int entries = measure_stack(*checked.graphs.front()).entries;
-    CHECK(entries == 3 * stacks - 1);
+    const StackSize size = measure_stack(*checked.graphs.front());
+    CHECK(size.parts == 1);
+    CHECK(size.longest_part == layers + 1);
+    const int entries = glsl_loop_entries(size);
+    CHECK(entries == layers + 1);
     Diagnostics advice;
-    warn_glsl_unrolling(entries, "tiles.json", "/materials/0", advice);
+    warn_glsl_unrolling(entries, "coats.json", "/materials/0", advice);
     if (entries <= kGlslUnrolledEntries) {
       CHECK(advice.warnings().empty());
     } else {
@@ -205,11 +210,45 @@ TEST_CASE("a stack longer than GLSL compilers unroll is a warning at its surface
   }
 }
 
-TEST_CASE("no bundled example is longer than GLSL compilers unroll") {
+TEST_CASE("a select of more stacks than GLSL compilers unroll loops over its parts, and is no warning") {
+  // 3 stacks - 1 entries: the fewest stacks that are too many for one loop.
+  const int stacks = (kGlslUnrolledEntries + 1) / 3 + 1;
+  CheckedFile checked = check_text(test::select_of_layers(stacks), "tiles.json");
+  REQUIRE(checked.ok());
+  const StackSize size = measure_stack(*checked.graphs.front());
+  CHECK(size.entries == 3 * stacks - 1);
+  CHECK(size.parts == stacks);
+  CHECK(size.longest_part == 2);
+  CHECK(glsl_loop_entries(size) == 2);
+  Diagnostics advice;
+  warn_glsl_unrolling(glsl_loop_entries(size), "tiles.json", "/materials/0", advice);
+  CHECK(advice.warnings().empty());
+}
+
+TEST_CASE("the graph's count of GLSL loop entries is the compiled Program's, for every example and random stacks") {
+  auto check_all = [](const CheckedFile& checked, const std::string& file) {
+    REQUIRE_MESSAGE(checked.ok(), file);
+    for (const auto& graph : checked.graphs) {
+      const Program program = compile(*graph, file, test::repository_policy());
+      CAPTURE(program.name);
+      const StackSize size = measure_stack(*graph);
+      const StackBlend blend = split_blend(program, true);
+      CHECK(size.entries == int(program.stack.size()));
+      CHECK(size.parts == int(blend.parts.size()));
+      CHECK(size.longest_part == blend.longest_part());
+      CHECK(glsl_loop_entries(size) == glsl::unrolled_entries(program));
+    }
+  };
+  for (const auto& file : test::example_files()) check_all(check_file(file, test::repository_policy()), file.string());
+  check_all(check_text(test::RandomStacks(7).file(24), "random.json"), "random.json");
+  check_all(check_text(test::select_of_layers(12), "tiles.json"), "tiles.json");
+}
+
+TEST_CASE("no bundled example's GLSL loops over more entries than GLSL compilers unroll") {
   for (const auto& file : test::example_files()) {
     CAPTURE(file.string());
     CheckedFile checked = check_file(file);
     REQUIRE(checked.ok());
-    for (const auto& graph : checked.graphs) CHECK(measure_stack(*graph).entries <= kGlslUnrolledEntries);
+    for (const auto& graph : checked.graphs) CHECK(glsl_loop_entries(measure_stack(*graph)) <= kGlslUnrolledEntries);
   }
 }

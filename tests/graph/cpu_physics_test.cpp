@@ -325,6 +325,7 @@ const std::map<std::string, double>& documented_excess() {
       {"gold_metallic_paint", 1.978 * 1.03},       // 0 deg, R
       {"gold_paint", 1.570 * 1.03},                // 0 deg, R
       {"house_paint", 1.199 * 1.03},               // 89 deg, B
+      {"lavender_lepidolite", 2.086 * 1.03},       // 0 deg, R: silver glitter under IOR 1.56
       {"patina_map_copper", 1.950 * 1.03},         // 0 deg, R, where the patina is thin
       {"procedural_patina_copper", 1.680 * 1.03},  // 0 deg, R, bare copper under its tarnish
       {"red_lacquer", 1.689 * 1.03},               // 89 deg, R

@@ -120,7 +120,7 @@ void main() {
     inputs[i].normal = i == 2 ? w : vec3(0.0f, 0.0f, 1.0f);
   }
   LaminaParams params[LAMINA_STACK];
-  lamina_stack_resolve(LAMINA_STACK, entries, inputs, true, int(c > 0.5f), params);
+  lamina_stack_resolve(LAMINA_STACK, entries, inputs, 1.0f, true, int(c > 0.5f), params);
   float weight[LAMINA_STACK];
   vec3 sv[LAMINA_STACK];
   bool valid[LAMINA_STACK];
@@ -172,6 +172,33 @@ void main() {
                                    whole) + whole;
   f += lamina_albedo_point_at(0, 0, vec2(1.0f), c, 0.7f).fx;
   s += lamina_stack_eval_conserving(LAMINA_STACK, entries, params, w, v);
+  // a blend of two parts, each the stack above (LAMINA_PARTS 2, LAMINA_BLEND 3)
+  LaminaEntry blend[LAMINA_BLEND];
+  LaminaInputs blend_inputs[LAMINA_BLEND];
+  for (int i = 0; i < LAMINA_BLEND; ++i) {
+    blend[i] = entries[i == 0 ? 1 : 0];
+    blend[i].parent = i == 0 ? -1 : 0;
+    blend[i].side = i == 2 ? 1 : 0;
+    blend_inputs[i] = inputs[i];
+  }
+  float blend_share[LAMINA_BLEND];
+  lamina_blend_shares(LAMINA_BLEND, blend, blend_inputs, blend_share);
+  int part_counts[LAMINA_PARTS] = int[LAMINA_PARTS](LAMINA_STACK, LAMINA_STACK);
+  float part_share[LAMINA_PARTS] = float[LAMINA_PARTS](blend_share[1], blend_share[2]);
+  LaminaEntry part_entries[LAMINA_PARTS * LAMINA_STACK];
+  LaminaInputs part_inputs[LAMINA_PARTS * LAMINA_STACK];
+  for (int i = 0; i < LAMINA_PARTS * LAMINA_STACK; ++i) {
+    part_entries[i] = entries[i % LAMINA_STACK];
+    part_inputs[i] = inputs[i % LAMINA_STACK];
+  }
+  LaminaPoint point;
+  lamina_blend_resolve(LAMINA_PARTS, part_counts, part_entries, part_inputs, part_share, true, 1, point);
+  s += lamina_blend_eval(LAMINA_PARTS, part_counts, part_entries, point, 1, w, v);
+  LaminaPartsSelection selection;
+  lamina_blend_select(LAMINA_PARTS, part_counts, part_entries, point, v, selection);
+  f += lamina_blend_pdf(LAMINA_PARTS, part_counts, part_entries, point, selection, w, v);
+  int part_chosen = lamina_blend_choose(LAMINA_PARTS, part_counts, selection, c);
+  s += lamina_blend_sample(part_counts, part_entries, point, selection, part_chosen, v_uv);
   if (lamina_is_lobe(entries[0]) && lamina_is_microfacet_lobe(entries[2])) f += 1.0f;
   frag_color = vec4(s, f);
 }
@@ -190,6 +217,8 @@ for target in 330 450 es300; do
     # The one macro the back end defines: the length of the stack's arrays (common.glsl defines
     # the others).
     echo "#define LAMINA_STACK 4"
+    echo "#define LAMINA_PARTS 2"
+    echo "#define LAMINA_BLEND 3"
     # and the dielectric albedo table's reader (energy.glsl): a texture of every combination.
     echo "uniform highp usampler2D lamina_dielectric_albedo_table;"
     etas=$(sed -n 's/^const int LAMINA_ALBEDO_ETAS = \([0-9]*\);.*/\1/p' "$kernels/albedo_grid.glsl")

@@ -117,24 +117,44 @@ TEST_CASE("lamina validate checks a scene and its material files and prints a on
   CHECK(r.out.find("1 of 1 file valid, " + materials + " materials, 0 warnings") != std::string::npos);
 }
 
-TEST_CASE("lamina validate and lamina glsl warn about a stack longer than GLSL compilers unroll, and still succeed") {
+TEST_CASE(
+    "lamina validate and lamina glsl warn about a chain of layers longer than GLSL compilers unroll, and still "
+    "succeed") {
   test::TempDir dir;
-  const int stacks = (kGlslUnrolledEntries + 1) / 3 + 1;  // the fewest whose 3 stacks - 1 entries are too many
-  { std::ofstream(dir.path() / "tiles.json") << test::select_of_layers(stacks); }
+  const int layers = kGlslUnrolledEntries;  // with its base, one entry too many
+  { std::ofstream(dir.path() / "coats.json") << test::chain_of_layers(layers); }
   const std::string warning =
-      "tiles.json:/materials/0/surface: warning: the stack compiles to " + std::to_string(3 * stacks - 1) + " entries";
-  auto v = test::run_cli("validate tiles.json", dir.path());
+      "coats.json:/materials/0/surface: warning: a chain of layers down to a substrate "
+      "compiles to " +
+      std::to_string(layers + 1) + " entries";
+  auto v = test::run_cli("validate coats.json", dir.path());
   CHECK(v.exit_code == 0);
   CHECK(v.err.find(warning) != std::string::npos);
   CHECK(v.out.find("1 warning") != std::string::npos);
-  auto g = test::run_cli("glsl tiles.json -o tiles.glsl", dir.path());
+  auto g = test::run_cli("glsl coats.json -o coats.glsl", dir.path());
   CHECK(g.exit_code == 0);
   CHECK(g.err.find(warning) != std::string::npos);
-  CHECK(std::filesystem::exists(dir.path() / "tiles.glsl"));
+  CHECK(std::filesystem::exists(dir.path() / "coats.glsl"));
   // The CPU evaluator does not care: eval says nothing.
-  auto e = test::run_cli("eval tiles.json --wi 0,0,1 --wo 0,0,1", dir.path());
+  auto e = test::run_cli("eval coats.json --wi 0,0,1 --wo 0,0,1", dir.path());
   CHECK(e.exit_code == 0);
   CHECK(e.err.empty());
+}
+
+TEST_CASE("a select of more stacks than GLSL compilers unroll is evaluated by parts in GLSL, without a warning") {
+  test::TempDir dir;
+  const int stacks = (kGlslUnrolledEntries + 1) / 3 + 1;  // the fewest whose 3 stacks - 1 entries are too many
+  { std::ofstream(dir.path() / "tiles.json") << test::select_of_layers(stacks); }
+  auto v = test::run_cli("validate tiles.json", dir.path());
+  CHECK(v.exit_code == 0);
+  CHECK(v.out.find("0 warnings") != std::string::npos);
+  auto g = test::run_cli("glsl tiles.json -o tiles.glsl", dir.path());
+  CHECK(g.exit_code == 0);
+  CHECK(g.err.empty());
+  const std::string module = test::read_file(dir.path() / "tiles.glsl");
+  CHECK(module.find("#define LAMINA_STACK 2\n") != std::string::npos);
+  CHECK(module.find("#define LAMINA_PARTS " + std::to_string(stacks) + "\n") != std::string::npos);
+  CHECK(module.find("lamina_blend_eval(") != std::string::npos);
 }
 
 TEST_CASE("lamina glsl warns about each material shorter than its module's longest stack, and only then") {
