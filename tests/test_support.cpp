@@ -29,6 +29,18 @@ std::vector<std::filesystem::path> example_files() {
   return files;
 }
 
+std::vector<std::filesystem::path> swept_example_files(int offset) {
+  std::vector<std::filesystem::path> files = example_files();
+#ifdef LAMINA_SANITIZED
+  std::vector<std::filesystem::path> every_second;
+  for (size_t i = size_t(offset); i < files.size(); i += 2) every_second.push_back(files[i]);
+  files = std::move(every_second);
+#else
+  (void)offset;
+#endif
+  return files;
+}
+
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path.string());

@@ -14,6 +14,10 @@ std::filesystem::path source_dir();
 // examples/materials): the repository is the one asset root.
 AssetPolicy repository_policy();
 std::vector<std::filesystem::path> example_files();  // examples/materials/*.json, sorted
+// The examples a sweep over every example visits: all of them, or under the sanitisers (which look
+// for memory errors, 3-5x slower) every second one from `offset` (0 or 1), so that two sweeps with
+// different offsets cover every example between them while the optimised build runs each in full.
+std::vector<std::filesystem::path> swept_example_files(int offset);
 std::string read_file(const std::filesystem::path& path);
 
 struct RunResult {

@@ -35,10 +35,11 @@ std::string canonical(Material m) {
   return write_document(single);
 }
 
+// The graph travels in our extension; the fallback only has to be there, so one fit a material.
 gltf::ExportOptions quick() {
   gltf::ExportOptions o;
   o.fallback.bake_size = 32;
-  o.fallback.max_states = 3;
+  o.fallback.max_states = 1;
   return o;
 }
 
@@ -86,7 +87,8 @@ void round_trip(const Scene& scene, const std::filesystem::path& out) {
 
 TEST_CASE("round trip: every example material -> .glb and .gltf -> lamina gives the identical graph") {
   test::TempDir dir;
-  for (const auto& file : test::example_files()) {
+  // Under the sanitisers every second example, the others' being fitted by fit_pbr's sweep.
+  for (const auto& file : test::swept_example_files(1)) {
     CAPTURE(file);
     CheckedFile checked = check_file(file);
     REQUIRE(checked.ok());
