@@ -1424,7 +1424,8 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
 LAMINA_FN vec2 lamina_stack_estimate(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                      LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wo,
                                      LAMINA_OUT_ARRAY(float) weight[LAMINA_STACK],
-                                     LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK], LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
+                                     LAMINA_OUT_ARRAY(vec3) v[LAMINA_STACK],
+                                     LAMINA_OUT_ARRAY(bool) valid[LAMINA_STACK]) {
   float throughput[LAMINA_STACK];
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
@@ -1700,6 +1701,15 @@ struct LaminaPartsSelection {
   bool valid[LAMINA_PARTS * LAMINA_STACK];
 };
 
+// Part k's entries and parameters, in arrays of a stack's length for the composition above.
+LAMINA_FN void lamina_part_entries(int k, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                   LAMINA_OUT_ARRAY(LaminaEntry) e[LAMINA_STACK]) {
+  for (int j = 0; j < LAMINA_STACK; ++j) e[j] = entries[k * LAMINA_STACK + j];
+}
+LAMINA_FN void lamina_part_params(int k, LAMINA_IN(LaminaPoint) point, LAMINA_OUT_ARRAY(LaminaParams) p[LAMINA_STACK]) {
+  for (int j = 0; j < LAMINA_STACK; ++j) p[j] = point.parts[k * LAMINA_STACK + j];
+}
+
 // Every blend entry's share of the surface, top down (a part's first entry holds the part's).
 LAMINA_FN void lamina_blend_shares(int count, LAMINA_IN_ARRAY(LaminaEntry) blend[LAMINA_BLEND],
                                    LAMINA_IN_ARRAY(LaminaInputs) inputs[LAMINA_BLEND],
@@ -1721,11 +1731,9 @@ LAMINA_FN void lamina_blend_resolve(int parts, LAMINA_IN_ARRAY(int) counts[LAMIN
   for (int k = 0; k < parts; ++k) {
     point.share[k] = share[k];
     LaminaEntry e[LAMINA_STACK];
+    lamina_part_entries(k, entries, e);
     LaminaInputs x[LAMINA_STACK];
-    for (int j = 0; j < LAMINA_STACK; ++j) {
-      e[j] = entries[k * LAMINA_STACK + j];
-      x[j] = inputs[k * LAMINA_STACK + j];
-    }
+    for (int j = 0; j < LAMINA_STACK; ++j) x[j] = inputs[k * LAMINA_STACK + j];
     LaminaParams p[LAMINA_STACK];
     lamina_stack_resolve(counts[k], e, x, share[k], clamp_lower, model, p);
     for (int j = 0; j < LAMINA_STACK; ++j) point.parts[k * LAMINA_STACK + j] = p[j];
@@ -1741,10 +1749,8 @@ LAMINA_FN vec3 lamina_blend_eval(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_P
   for (int k = 0; k < parts; ++k) {
     LaminaEntry e[LAMINA_STACK];
     LaminaParams p[LAMINA_STACK];
-    for (int j = 0; j < LAMINA_STACK; ++j) {
-      e[j] = entries[k * LAMINA_STACK + j];
-      p[j] = point.parts[k * LAMINA_STACK + j];
-    }
+    lamina_part_entries(k, entries, e);
+    lamina_part_params(k, point, p);
     vec3 part = model == LAMINA_MODEL_ENERGY_CONSERVING ? lamina_stack_eval_conserving(counts[k], e, p, wi, wo)
                                                         : lamina_stack_eval(counts[k], e, p, wi, wo);
     f += point.share[k] * part;
@@ -1762,10 +1768,8 @@ LAMINA_FN void lamina_blend_select(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA
   for (int k = 0; k < parts; ++k) {
     LaminaEntry e[LAMINA_STACK];
     LaminaParams p[LAMINA_STACK];
-    for (int j = 0; j < LAMINA_STACK; ++j) {
-      e[j] = entries[k * LAMINA_STACK + j];
-      p[j] = point.parts[k * LAMINA_STACK + j];
-    }
+    lamina_part_entries(k, entries, e);
+    lamina_part_params(k, point, p);
     float w[LAMINA_STACK];
     vec3 wo_own[LAMINA_STACK];
     bool reached[LAMINA_STACK];
@@ -1782,10 +1786,10 @@ LAMINA_FN void lamina_blend_select(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA
   float sum = 0.0f;
   for (int k = 0; k < parts; ++k) {
     LaminaEntry e[LAMINA_STACK];
+    lamina_part_entries(k, entries, e);
     float w[LAMINA_STACK];
     bool reached[LAMINA_STACK];
     for (int j = 0; j < LAMINA_STACK; ++j) {
-      e[j] = entries[k * LAMINA_STACK + j];
       w[j] = s.weight[k * LAMINA_STACK + j];
       reached[j] = s.valid[k * LAMINA_STACK + j];
     }
@@ -1805,12 +1809,12 @@ LAMINA_FN float lamina_blend_pdf(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_P
   for (int k = 0; k < parts; ++k) {
     LaminaEntry e[LAMINA_STACK];
     LaminaParams p[LAMINA_STACK];
+    lamina_part_entries(k, entries, e);
+    lamina_part_params(k, point, p);
     float w[LAMINA_STACK];
     vec3 wo_own[LAMINA_STACK];
     bool reached[LAMINA_STACK];
     for (int j = 0; j < LAMINA_STACK; ++j) {
-      e[j] = entries[k * LAMINA_STACK + j];
-      p[j] = point.parts[k * LAMINA_STACK + j];
       w[j] = s.weight[k * LAMINA_STACK + j];
       wo_own[j] = s.v[k * LAMINA_STACK + j];
       reached[j] = s.valid[k * LAMINA_STACK + j];
@@ -1855,11 +1859,9 @@ LAMINA_FN vec3 lamina_blend_sample(LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
   int k = chosen / LAMINA_STACK;
   LaminaEntry e[LAMINA_STACK];
   LaminaParams p[LAMINA_STACK];
+  lamina_part_entries(k, entries, e);
+  lamina_part_params(k, point, p);
   vec3 wo_own[LAMINA_STACK];
-  for (int j = 0; j < LAMINA_STACK; ++j) {
-    e[j] = entries[k * LAMINA_STACK + j];
-    p[j] = point.parts[k * LAMINA_STACK + j];
-    wo_own[j] = s.v[k * LAMINA_STACK + j];
-  }
+  for (int j = 0; j < LAMINA_STACK; ++j) wo_own[j] = s.v[k * LAMINA_STACK + j];
   return lamina_stack_sample(counts[k], e, p, wo_own, chosen - k * LAMINA_STACK, u);
 }
