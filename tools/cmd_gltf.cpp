@@ -17,6 +17,7 @@ struct GltfOptions {
   std::string output;
   bool report = false;
   int bake_size = 0;  // auto
+  int fit_states = gltf::FallbackOptions{}.max_states;
   int columns = 4;
   InputOptions input_options;
 };
@@ -95,6 +96,7 @@ int run_gltf(const GltfOptions& o) {
 
   gltf::ExportOptions options;
   options.fallback.bake_size = o.bake_size;
+  options.fallback.max_states = o.fit_states;
   gltf::Export result;
   try {
     result = gltf::export_scene(scene, output, options);
@@ -132,6 +134,11 @@ void add_gltf(CLI::App& app, Runner& runner) {
   cmd->add_option("--bake-size", o->bake_size,
                   "texels per side of fallback textures baked from texture nodes; 0 (the default): per material, "
                   "twice its finest detail over uv as a power of two from 64 to 512 (README, glTF)")
+      ->capture_default_str();
+  cmd->add_option("--fit-states", o->fit_states,
+                  "fits per textured material: its distinct texture states up to this many, representative ones "
+                  "beyond, the texels between interpolated (fewer: a faster export, a coarser fallback)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")
       ->check(CLI::Range(1, 64))

@@ -2,9 +2,9 @@
 # Exports the showcase scene (.gltf), every example material's sample sheet (.glb) and one sheet
 # under a name whose buffer URI must be percent-encoded, with the lamina CLI, for the validator
 # test. Usage: export_examples.sh LAMINA SOURCE_DIR OUT_DIR [--showcase-only] [GLTF OPTIONS...]
-# The sanitised build passes --showcase-only and a small --bake-size: it looks for memory errors,
-# which the sheets (the showcase's materials again) and a 512-texel bake with its fits only repeat,
-# at 5 times the optimised build's cost.
+# The sanitised build passes --showcase-only, a small --bake-size and --fit-states 1: it looks for
+# memory errors, which the sheets (the showcase's materials again) and a 512-texel bake with all its
+# fits only repeat, at 5 times the optimised build's cost.
 set -euo pipefail
 lamina=$1 source=$2 out=$3
 shift 3

@@ -87,6 +87,12 @@ std::string join_wrapped(const std::string& text) {
 
 const glsl::Target kTargets[] = {glsl::Target::Glsl330, glsl::Target::Glsl450, glsl::Target::Es300};
 
+#ifdef LAMINA_SANITIZED
+constexpr bool kValidating = false;
+#else
+constexpr bool kValidating = true;
+#endif
+
 }  // namespace
 
 TEST_CASE("glsl: every material compiles for every target in both modes, alone and with the sphere and plane shaders") {
@@ -103,12 +109,17 @@ TEST_CASE("glsl: every material compiles for every target in both modes, alone a
           if (shader == Shader::Plane && (uniforms || target != glsl::Target::Es300)) continue;
           const char* suffix = shader == Shader::Sphere ? "_sphere" : shader == Shader::Plane ? "_plane" : "";
           std::string name = file.stem().string() + "_" + glsl::target_name(target) + (uniforms ? "_u" : "") + suffix;
-          std::string log = validate(generate(c.programs, target, uniforms, shader), dir.path(), name);
+          const std::string source = generate(c.programs, target, uniforms, shader);
+          CHECK(!source.empty());
+          // The sanitised build generates every module (lamina's code, which the sanitisers watch)
+          // and leaves glslangValidator's verdict on the same text to the optimised build.
+          if (!kValidating) continue;
+          std::string log = validate(source, dir.path(), name);
           CHECK_MESSAGE(log.empty(), name << ":\n" << log);
           ++modules;
         }
   }
-  CHECK(modules == int(glsl_material_files().size()) * (int(std::size(kTargets)) * 4 + 1));
+  if (kValidating) CHECK(modules == int(glsl_material_files().size()) * (int(std::size(kTargets)) * 4 + 1));
 }
 
 TEST_CASE("glsl: the validator check can fail: a broken module is rejected") {

@@ -182,6 +182,21 @@ TEST_CASE("lamina glsl warns about each material shorter than its module's longe
   CHECK(chosen.err.empty());
 }
 
+TEST_CASE("lamina gltf --fit-states bounds the fits of a textured material, and refuses a count out of range") {
+  test::TempDir dir;
+  const std::string sunstone = (test::source_dir() / "examples/materials/sunstone.json").string();
+  auto two = test::run_cli("gltf '" + sunstone + "' -o two.glb --bake-size 32 --fit-states 2 --report", dir.path());
+  CHECK(two.exit_code == 0);
+  CHECK(two.out.find("  sunstone                     2~") != std::string::npos);
+  for (const char* count : {"0", "65"}) {
+    CAPTURE(count);
+    auto bad = test::run_cli("gltf '" + sunstone + "' -o bad.glb --fit-states " + count, dir.path());
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--fit-states") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir.path() / "bad.glb"));
+  }
+}
+
 TEST_CASE("lamina validate exits 2 on a broken scene, naming the scene or the material file at fault") {
   auto scene = test::run_cli("validate tests/data/bad_scenes/radius_zero.json", test::source_dir());
   CHECK(scene.exit_code == 2);
