@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -120,6 +121,33 @@ TEST_CASE("glsl: every material compiles for every target in both modes, alone a
         }
   }
   if (kValidating) CHECK(modules == int(glsl_material_files().size()) * (int(std::size(kTargets)) * 4 + 1));
+}
+
+TEST_CASE("glsl: an untextured stack beyond 32 entries is evaluated by parts, its parameters literals or uniforms") {
+  // A select of 12 varnished stacks by a constant index, half covered: 35 entries in 12 parts.
+  nlohmann::json file = nlohmann::json::parse(test::select_of_layers(12));
+  for (auto& node : file["materials"][0]["nodes"])
+    if (node["id"] == "map") {
+      node["index"] = 5.5;
+      node["coverage"] = 0.5;
+    }
+  CheckedFile checked = check_text(file.dump(), "tiles.json");
+  REQUIRE(checked.ok());
+  const std::vector<Program> programs{compile(*checked.graphs[0], "tiles.json")};
+  REQUIRE_FALSE(programs[0].textured());
+  REQUIRE(glsl::evaluates_by_parts(programs[0]));
+  test::TempDir dir;
+  for (glsl::Target target : {glsl::Target::Glsl330, glsl::Target::Es300})
+    for (bool uniforms : {false, true}) {
+      const std::string source = generate(programs, target, uniforms);
+      // Inlined, the C++ kernels resolve every part's parameters and share into literals.
+      CHECK((source.find("  point.share[11] = ") != std::string::npos) == !uniforms);
+      CHECK(source.find("lamina_blend_eval(lamina_tiles_parts") != std::string::npos);
+      if (!kValidating) continue;
+      const std::string name = std::string("tiles_") + glsl::target_name(target) + (uniforms ? "_u" : "");
+      const std::string log = validate(source, dir.path(), name);
+      CHECK_MESSAGE(log.empty(), name << ":\n" << log);
+    }
 }
 
 TEST_CASE("glsl: the validator check can fail: a broken module is rejected") {
