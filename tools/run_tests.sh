@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds lamina twice, optimised (GCC) and with ASan+UBSan (clang), runs the whole test suite on
-# each, then runs every fuzz target of the sanitised build for 15 seconds (tools/run_fuzz.sh; the CI budget
+# each, then runs every fuzz target of the sanitised build for 10 seconds (tools/run_fuzz.sh; the CI budget
 # of 30 minutes on 2 cores leaves that much: longer hunts run the script by hand).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,4 +16,4 @@ for variant in release asan; do
   (cd "build/$variant" && ctest --output-on-failure -j "$(nproc)")
 done
 echo "== fuzz"
-bash tools/run_fuzz.sh 15 build/asan
+bash tools/run_fuzz.sh 10 build/asan
