@@ -1,7 +1,10 @@
 #include "graph/kernel_stack.h"
 
 #include <algorithm>
+#include <array>
+#include <stdexcept>
 
+#include "graph/limits.h"
 #include "graph/registers.h"
 
 namespace lamina {
@@ -113,6 +116,45 @@ StackBlend split_blend(const Program& program, bool fold_slopes) {
       blend.entries[size_t(parent)].second = int(b);
   }
   return blend;
+}
+
+int shown_stack(int count, const kernels::LaminaEntry* entries, const kernels::LaminaParams* params,
+                kernels::LaminaEntry* out_entries, kernels::LaminaParams* out_params, int* whole) {
+  const auto shown = [&](int i) { return params[i].share > 0.0f; };
+  bool hides = false;
+  for (int i = 0; i < count; ++i) hides = hides || !shown(i);
+  if (!hides) return 0;
+  if (count > kMaxStackEntries) throw std::length_error("shown_stack: a stack beyond the evaluator's limits");
+  // Top down (a parent comes before its children): an entry is kept when it is shown or its parent
+  // is (a shown mix's hidden stack; a layer passes its share on unchanged, so below a shown layer
+  // every entry is shown).
+  std::array<int, kMaxStackEntries> place;
+  int n = 0;
+  for (int i = 0; i < count; ++i) {
+    const int parent = entries[i].parent;
+    place[size_t(i)] = -1;
+    if (!shown(i) && (parent < 0 || !shown(parent))) continue;
+    place[size_t(i)] = n;
+    kernels::LaminaEntry e = entries[i];
+    e.parent = parent < 0 ? -1 : place[size_t(parent)];
+    if (!shown(i)) {
+      e.kind = kernels::LAMINA_SUBSTRATE;
+      e.model = kernels::LAMINA_SUBSTRATE_LAMBERT;
+      e.first = -1;
+      e.second = -1;
+    }
+    out_entries[n] = e;
+    out_params[n] = params[i];
+    whole[n] = i;
+    ++n;
+  }
+  // Children come after their parents: re-index them once every entry has its place.
+  for (int j = 0; j < n; ++j) {
+    kernels::LaminaEntry& e = out_entries[j];
+    if (e.first >= 0) e.first = place[size_t(e.first)];
+    if (e.second >= 0) e.second = place[size_t(e.second)];
+  }
+  return n;
 }
 
 }  // namespace lamina

@@ -48,4 +48,15 @@ struct StackBlend {
 
 StackBlend split_blend(const Program& program, bool fold_slopes);
 
+// A resolved stack without the entries no mix shows (LaminaParams::share 0: the stacks a select's
+// chain hides at this point). An entry no mix shows adds exact zeros to every query of the
+// composition (lamina_eval_enter leaves it unreached, lamina_stack_estimate gives it no weight), so
+// each query gives on the shown stack bit for bit what it gives on the whole one, in fewer steps.
+// A hidden stack under a shown mix stays as one stand-in entry, a childless substrate that no mix
+// shows, so that the mix keeps its two stacks. Writes the shown stack into out_entries and
+// out_params (count entries at most), with whole[i] entry i's index in the given stack, and
+// returns its length; returns 0, writing nothing, when every entry is shown. count: at most kMaxStackEntries.
+int shown_stack(int count, const kernels::LaminaEntry* entries, const kernels::LaminaParams* params,
+                kernels::LaminaEntry* out_entries, kernels::LaminaParams* out_params, int* whole);
+
 }  // namespace lamina

@@ -56,14 +56,22 @@ const ShadingContext& context_at(std::span<const ShadingContext> ctx, size_t i) 
   return ctx.empty() ? kDefault : ctx[i];
 }
 
-// Runs `query(point, i)` for every i, binding a point once per run of equal contexts.
+// Runs a program's texture operations for ctx into its registers (Program::slot_count floats).
+void run_textures(const Program& program, const ShadingContext& ctx, float* registers) {
+  for (const TextureOp& op : program.ops) op.decl->run(op, ctx, registers);
+}
+
+// Runs `query(point, i)` for every i, binding a point once per run of equal contexts (each bound
+// in place: a point is tens of kilobytes, not worth copying).
 template <typename Query>
 void for_each_bound(const Evaluator& evaluator, std::span<const ShadingContext> ctx, size_t n, Query query) {
-  if (n == 0) return;
-  ShadingPoint point = evaluator.bind(context_at(ctx, 0));
-  for (size_t i = 0; i < n; ++i) {
-    if (i > 0 && !ctx.empty() && !(ctx[i] == ctx[i - 1])) point = evaluator.bind(ctx[i]);
-    query(point, i);
+  size_t i = 0;
+  while (i < n) {
+    const ShadingPoint point = evaluator.bind(context_at(ctx, i));
+    do {
+      query(point, i);
+      ++i;
+    } while (i < n && (ctx.empty() || ctx[i] == ctx[i - 1]));
   }
 }
 
@@ -93,24 +101,38 @@ Evaluator::Evaluator(Program program) : program_(std::move(program)) {
     if (!op.decl || !op.decl->run)
       throw std::logic_error("Evaluator: an operation of '" + program_.name + "' cannot run");
   if (!program_.textured() && count_ > 0) {
-    fixed_.resize(size_t(count_));
+    fixed_.resize(static_cast<size_t>(count_));
     k::lamina_stack_resolve(count_, entries_.data(), constants_.data(), 1.0f, program_.clamp_lower_roughness,
                             program_.model, fixed_.data());
+    std::vector<k::LaminaEntry> entries(static_cast<size_t>(count_));
+    std::vector<k::LaminaParams> params(static_cast<size_t>(count_));
+    std::vector<int> whole(static_cast<size_t>(count_));
+    const int shown = shown_stack(count_, entries_.data(), fixed_.data(), entries.data(), params.data(), whole.data());
+    if (shown > 0) {
+      entries.resize(size_t(shown));
+      params.resize(size_t(shown));
+      whole.resize(size_t(shown));
+      fixed_shown_ = Shown{std::move(entries), std::move(params), std::move(whole)};
+    }
   }
 }
 
-void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted) const {
-  float* r = point.registers_.data();
-  for (const TextureOp& op : program_.ops) op.decl->run(op, ctx, r);
+void Evaluator::resolve_params(const float* registers, bool untilted, int model, k::LaminaParams* params) const {
   std::array<k::LaminaInputs, kMaxStackEntries> inputs;
   for (int i = 0; i < count_; ++i) {
     k::LaminaInputs& x = inputs[size_t(i)];
-    x = kernel_inputs(program_.stack[size_t(i)], constants_[size_t(i)], r);
+    x = kernel_inputs(program_.stack[size_t(i)], constants_[size_t(i)], registers);
     if (untilted) x.normal = vec3(0.0f, 0.0f, glm::length(x.normal));
   }
-  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), 1.0f, program_.clamp_lower_roughness, program_.model,
-                          point.params_.data());
+  k::lamina_stack_resolve(count_, entries_.data(), inputs.data(), 1.0f, program_.clamp_lower_roughness, model, params);
+}
+
+void Evaluator::resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted) const {
+  run_textures(program_, ctx, point.registers_.data());
+  resolve_params(point.registers_.data(), untilted, program_.model, point.params_.data());
   point.own_params_ = true;
+  point.shown_count_ = shown_stack(count_, entries_.data(), point.params_.data(), point.shown_entries_.data(),
+                                   point.shown_params_.data(), point.shown_whole_.data());
 }
 
 ShadingPoint Evaluator::bind_point(const ShadingContext& ctx, bool untilted) const {
@@ -171,7 +193,11 @@ struct Local {
   int count;
   const k::LaminaEntry* entries;
   const k::LaminaParams* params;
-  int model;  // the program's LAMINA_MODEL_*
+  int model;                   // the program's LAMINA_MODEL_*
+  const int* whole = nullptr;  // a shown stack's entries' indices in the whole stack (shown_stack)
+
+  // Entry i's index in the whole stack, which lobes are numbered by.
+  int whole_entry(int i) const { return whole ? whole[i] : i; }
 
   // lamina_stack_eval returns 0 below the horizon itself.
   // A bare substrate, the only one-entry stack, has an instance of its own: a lone lobe then costs
@@ -198,7 +224,7 @@ struct Local {
     const vec3 wi = stack_sample(count, entries, params, s, chosen, u);
     if (wi.z <= 0.0f) return out;
     out.wi = wi;
-    out.lobe = entry_lobe[size_t(chosen)];
+    out.lobe = entry_lobe[size_t(whole_entry(chosen))];
     out.f = eval(wi, wo);
     out.pdf = pdf(s, wi, wo);
     return out;
@@ -209,8 +235,22 @@ ShadingPoint::Stack ShadingPoint::stack() const {
   return Stack{evaluator_->count_, evaluator_->entries_.data(), params()};
 }
 
+int ShadingPoint::walked_entries() const { return queries().count; }
+
 Local ShadingPoint::queries() const {
-  return Local{evaluator_->count_, evaluator_->entries_.data(), params(), evaluator_->program_.model};
+  const int model = evaluator_->program_.model;
+  if (shown_count_ > 0)
+    return Local{shown_count_, shown_entries_.data(), shown_params_.data(), model, shown_whole_.data()};
+  if (!own_params_) return evaluator_->fixed_queries();
+  return Local{evaluator_->count_, evaluator_->entries_.data(), params_.data(), model};
+}
+
+Local Evaluator::fixed_queries() const {
+  const Shown& shown = fixed_shown_;
+  if (!shown.entries.empty())
+    return Local{int(shown.entries.size()), shown.entries.data(), shown.params.data(), program_.model,
+                 shown.whole.data()};
+  return Local{count_, entries_.data(), fixed_.data(), program_.model};
 }
 
 vec3 ShadingPoint::eval(vec3 wi, vec3 wo) const { return queries().eval(local(wi), local(wo)); }
@@ -243,7 +283,11 @@ std::vector<float> ShadingPoint::lobe_weights(vec3 wo) const {
   if (wo.z <= 0.0f) return weights;
   Selection s;
   q.select(wo, s);
-  for (size_t j = 0; j < weights.size(); ++j) weights[j] = s.weight[size_t(evaluator_->lobe_entry_[j])];
+  // A shown stack's stand-ins for hidden stacks (which may stand in for a mix) have weight 0.
+  for (int i = 0; i < q.count; ++i) {
+    const int lobe = evaluator_->entry_lobe_[size_t(q.whole_entry(i))];
+    if (lobe >= 0 && s.weight[size_t(i)] > 0.0f) weights[size_t(lobe)] = s.weight[size_t(i)];
+  }
   return weights;
 }
 
@@ -280,9 +324,9 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
   };
   vec3 total(0.0f);
   float lo = 0.0f;
-  for (int entry : evaluator_->lobe_entry_) {
+  for (int entry = 0; entry < q.count; ++entry) {
     const float w = s.weight[size_t(entry)];
-    if (w <= 0.0f) continue;
+    if (!k::lamina_is_lobe(q.entries[entry]) || w <= 0.0f) continue;
     const float u_lobe = std::min(lo + 0.5f * w, 1.0f - 1.0e-7f);
     lo += w;
     // Rounding may let u_lobe pick a neighbour of a tiny lobe; those samples are not this lobe's.
@@ -318,14 +362,12 @@ namespace {
 
 vec3 Evaluator::eval(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
   // The hot path: an untextured material in the local frame needs no bound point.
-  if (!program_.textured() && default_frame(ctx))
-    return Local{count_, entries_.data(), fixed_.data(), program_.model}.eval(wi, wo);
+  if (!program_.textured() && default_frame(ctx)) return fixed_queries().eval(wi, wo);
   return bound_eval(*this, ctx, wi, wo);
 }
 
 float Evaluator::pdf(const ShadingContext& ctx, vec3 wi, vec3 wo) const {
-  if (!program_.textured() && default_frame(ctx))
-    return Local{count_, entries_.data(), fixed_.data(), program_.model}.pdf(wi, wo);
+  if (!program_.textured() && default_frame(ctx)) return fixed_queries().pdf(wi, wo);
   return bound_pdf(*this, ctx, wi, wo);
 }
 
@@ -344,9 +386,23 @@ std::vector<float> Evaluator::lobe_weights(const ShadingContext& ctx, vec3 wo) c
 }
 
 std::vector<float> Evaluator::texture_registers(const ShadingContext& ctx) const {
-  const ShadingPoint point = bind(ctx);
-  const std::span<const float> r = point.registers();
-  return std::vector<float>(r.begin(), r.end());
+  // Only the texture operations: a back end grouping texels by their registers (the glTF bake
+  // visits every texel) need not resolve the stack at each.
+  std::vector<float> registers(size_t(program_.slot_count));
+  run_textures(program_, ctx, registers.data());
+  return registers;
+}
+
+std::vector<Evaluator::EntryCover> Evaluator::entry_covers(const ShadingContext& ctx) const {
+  // The first pass of lamina_stack_resolve places every entry; the original model's resolve is
+  // that pass alone.
+  std::array<float, kMaxSlots> registers;
+  run_textures(program_, ctx, registers.data());
+  std::array<k::LaminaParams, kMaxStackEntries> params;
+  resolve_params(registers.data(), false, k::LAMINA_MODEL_WEIDLICH_WILKIE, params.data());
+  std::vector<EntryCover> covers(static_cast<size_t>(count_));
+  for (size_t i = 0; i < covers.size(); ++i) covers[i] = EntryCover{params[i].share, params[i].normal};
+  return covers;
 }
 
 // --- batches -------------------------------------------------------------------------------------------

@@ -51,7 +51,8 @@ class Evaluator;
 struct Local;  // the local-frame queries on one point's parameters (evaluator.cpp)
 
 // A material bound to one shading context, valid while its Evaluator lives. It holds its texture
-// registers and parameters inline (about 13 KB, no allocation): bind once per hit, pass by reference.
+// registers and parameters inline (66 KB at the stack limits, no allocation; a bind writes only what
+// its stack uses): bind once per hit, in place, and pass it by reference.
 class ShadingPoint {
  public:
   // Directions in the space of the context's normal and tangent (world space for a renderer; the
@@ -80,6 +81,9 @@ class ShadingPoint {
     const kernels::LaminaParams* params = nullptr;
   };
   Stack stack() const;
+  // How many entries the queries walk here: the stack's, less the stacks no mix shows at this point
+  // (a select's chain over one cell shows one of its stacks), which add nothing to any query.
+  int walked_entries() const;
   // A direction given as the queries take it, in the local frame the stack's kernels work in.
   glm::vec3 local(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_local(w); }
 
@@ -101,6 +105,12 @@ class ShadingPoint {
   bool own_params_ = false;  // textured: params resolved here; otherwise the evaluator's
   std::array<float, kMaxSlots> registers_;
   std::array<kernels::LaminaParams, kMaxStackEntries> params_;
+  // When some mix hides entries here (a select's chain over one cell), the queries run on the stack
+  // without them (graph/kernel_stack.h, shown_stack): bit for bit the same results, in fewer steps.
+  int shown_count_ = 0;  // 0: the whole stack
+  std::array<kernels::LaminaEntry, kMaxStackEntries> shown_entries_;
+  std::array<kernels::LaminaParams, kMaxStackEntries> shown_params_;
+  std::array<int, kMaxStackEntries> shown_whole_;
 };
 
 // Immutable once built: every member function is const and safe to call from many threads at once.
@@ -129,6 +139,16 @@ class Evaluator {
   std::vector<float> lobe_weights(const ShadingContext& ctx, glm::vec3 wo) const;
   std::vector<float> texture_registers(const ShadingContext& ctx) const;
 
+  // Where each stack entry lies at ctx: its share of the surface (the product of the mix weights
+  // above it; 0 where no mix shows it) and its normal in the local frame, as bind(ctx) resolves them,
+  // without the model's per-point coefficients (the energy-conserving model's quadratures). For
+  // back ends that bake the geometry of a surface, such as the glTF fallback's normal texture.
+  struct EntryCover {
+    float share = 0.0f;
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  };
+  std::vector<EntryCover> entry_covers(const ShadingContext& ctx) const;
+
   // Batches over structure-of-arrays spans: query i is (wi[i], wo[i]) at context ctx[i]. Every
   // span has the length of the output; ctx may also be empty (the default context for all).
   // Other lengths throw std::invalid_argument. Each result is bit for bit the single-query form's;
@@ -153,14 +173,23 @@ class Evaluator {
   // Fills the point's registers and parameters for ctx (textured materials only).
   ShadingPoint bind_point(const ShadingContext& ctx, bool untilted) const;
   void resolve(const ShadingContext& ctx, ShadingPoint& point, bool untilted) const;
+  // The queries on the untextured stack's parameters (resolved once) in the local frame.
+  Local fixed_queries() const;
+  // The stack's parameters at ctx from its registers (lamina_stack_resolve) for `model`.
+  void resolve_params(const float* registers, bool untilted, int model, kernels::LaminaParams* params) const;
 
   Program program_;
   int count_ = 0;                                 // stack entries
   std::vector<kernels::LaminaEntry> entries_;     // Program::stack as the kernels read it
   std::vector<kernels::LaminaInputs> constants_;  // every entry's inputs with its constants
   std::vector<kernels::LaminaParams> fixed_;      // untextured: every entry's parameters, resolved once
-  std::vector<int> lobe_entry_;                   // lobe j is entry lobe_entry_[j]
-  std::vector<int> entry_lobe_;                   // and entry i is lobe entry_lobe_[i] (-1: a mix)
+  struct Shown {                                  // and the stack its mixes show (ShadingPoint's shown_*)
+    std::vector<kernels::LaminaEntry> entries;    // empty: every entry
+    std::vector<kernels::LaminaParams> params;
+    std::vector<int> whole;
+  } fixed_shown_;
+  std::vector<int> lobe_entry_;  // lobe j is entry lobe_entry_[j]
+  std::vector<int> entry_lobe_;  // and entry i is lobe entry_lobe_[i] (-1: a mix)
   std::vector<std::string> lobe_names_;
 };
 

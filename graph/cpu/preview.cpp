@@ -48,8 +48,8 @@ std::vector<vec3> render_preview(const Evaluator& evaluator, int width, int heig
       const float c = float(i) / float(kSkyTableSize);
       sky_table.push_back(sky_estimate(evaluator.bind({}), vec3(std::sqrt(1.0f - c * c), 0.0f, c), ambient));
     }
-  auto sky_at = [&](const ShadingContext& ctx, vec3 wo) {
-    if (sky_table.empty()) return sky_estimate(evaluator.bind(ctx), wo, ambient);
+  auto sky_at = [&](const ShadingPoint& point, vec3 wo) {
+    if (sky_table.empty()) return sky_estimate(point, wo, ambient);
     const float t = std::clamp(wo.z, 0.0f, 1.0f) * float(kSkyTableSize);
     const int i = std::min(int(t), kSkyTableSize - 1);
     return glm::mix(sky_table[size_t(i)], sky_table[size_t(i) + 1], t - float(i));
@@ -76,10 +76,17 @@ std::vector<vec3> render_preview(const Evaluator& evaluator, int width, int heig
         ctx.footprint = point.footprint;
         vec3 wo = k::lamina_preview_local(k::LAMINA_PREVIEW_VIEW, n);
         vec3 wi = k::lamina_preview_local(k::LAMINA_PREVIEW_LIGHT, n);
+        // Bound once for both terms where either needs it: a textured point resolves its stack.
+        const bool lit = wi.z > 0.0f, needs_sky = ambient > 0.0f && !have_sky;
+        if (!lit && !needs_sky) {
+          sum += k::lamina_preview_display(sky);
+          continue;
+        }
+        const ShadingPoint bound = evaluator.bind(ctx);
         vec3 radiance(0.0f);
-        if (wi.z > 0.0f) radiance = k::lamina_preview_light(evaluator.eval(ctx, wi, wo), wi);
-        if (ambient > 0.0f && !have_sky) {
-          sky = sky_at(ctx, wo);
+        if (lit) radiance = k::lamina_preview_light(bound.eval(wi, wo), wi);
+        if (needs_sky) {
+          sky = sky_at(bound, wo);
           have_sky = true;
         }
         sum += k::lamina_preview_display(radiance + sky);

@@ -218,11 +218,12 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
 
 // The base's normal at a point: the mean of its substrates' normals, each weighted by its share of
 // the stack (its cells' coverage under a select). Not normalised: texels average it.
-glm::vec3 base_normal(const cpu::ShadingPoint& point) {
-  const cpu::ShadingPoint::Stack stack = point.stack();
+glm::vec3 base_normal(const cpu::Evaluator& evaluator, const ShadingContext& ctx) {
+  const std::vector<cpu::Evaluator::EntryCover> covers = evaluator.entry_covers(ctx);
+  const std::vector<StackEntry>& stack = evaluator.program().stack;
   glm::vec3 sum(0.0f);
-  for (int i = 0; i < stack.count; ++i)
-    if (stack.entries[i].kind == kernels::LAMINA_SUBSTRATE) sum += stack.params[i].share * stack.params[i].normal;
+  for (size_t i = 0; i < covers.size(); ++i)
+    if (stack[i].kind == kernels::LAMINA_SUBSTRATE) sum += covers[i].share * covers[i].normal;
   return sum;
 }
 
@@ -253,7 +254,7 @@ TexelNormal texel_normal(const cpu::Evaluator& evaluator, int row, int column, i
     for (int i = 0; i < n; ++i) {
       ctx.uv =
           glm::vec2((float(column * n + i) + 0.5f) / float(size * n), (float(row * n + j) + 0.5f) / float(size * n));
-      const glm::vec3 normal = base_normal(evaluator.bind(ctx));
+      const glm::vec3 normal = base_normal(evaluator, ctx);
       sum += normal;
       if (glm::dot(normal, normal) > 0.0f) unit_sum += glm::normalize(normal);
     }

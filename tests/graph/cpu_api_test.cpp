@@ -1,10 +1,13 @@
 // The library face of the CPU evaluator: the local frame from a world normal and tangent, the
-// batch forms (bit for bit the single queries, span lengths checked), use from many threads at
-// once, the limits of a program, and what compile hands the evaluator (the fresnel parameter).
+// batch forms (bit for bit the single queries, span lengths checked), the partial queries a baker
+// uses (registers, entry covers), use from many threads at once, the limits of a program, and what
+// compile hands the evaluator (the fresnel parameter).
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -12,6 +15,8 @@
 
 #include "cpu_test_support.h"
 #include "graph/cpu/frame.h"
+#include "graph/limits.h"
+#include "graph/lobes.h"
 #include "nodes/kernels/kernels.h"
 #include "test_support.h"
 
@@ -193,6 +198,81 @@ TEST_CASE("the batch forms give bit for bit the single-query results, textured m
     for (size_t i = 0; i < n; ++i) differs0 += f0[i] != e.eval(ShadingContext{}, q.wi[i], q.wo[i]) ? 1 : 0;
     CHECK(differs0 == 0);
   }
+}
+
+TEST_CASE("texture_registers and entry_covers give what a bound point holds, for every example") {
+  Draws d;
+  for (const auto& file : test::example_files()) {
+    const cpu::Evaluator e = test::load_evaluator(file);
+    CAPTURE(e.program().name);
+    long differs = 0;
+    for (int i = 0; i < 64; ++i) {
+      ShadingContext ctx = at_uv(d.uv());
+      ctx.footprint = i % 2 == 0 ? 0.0f : 1.0e-3f * d.uniform();  // filtered textures too
+      const cpu::ShadingPoint point = e.bind(ctx);
+      const std::span<const float> bound = point.registers();
+      const std::vector<float> registers = e.texture_registers(ctx);
+      differs += std::vector<float>(bound.begin(), bound.end()) == registers ? 0 : 1;
+      const cpu::ShadingPoint::Stack stack = point.stack();
+      const std::vector<cpu::Evaluator::EntryCover> covers = e.entry_covers(ctx);
+      REQUIRE(int(covers.size()) == stack.count);
+      for (int j = 0; j < stack.count; ++j)
+        differs +=
+            covers[size_t(j)].share == stack.params[j].share && covers[size_t(j)].normal == stack.params[j].normal ? 0
+                                                                                                                   : 1;
+    }
+    CHECK(differs == 0);
+  }
+}
+
+TEST_CASE("a point's queries skip the stacks no mix shows there and give bit for bit the whole stack's results") {
+  namespace k = lamina::kernels;
+  Draws d;
+  long skipping = 0;  // points whose queries walk fewer entries than the stack has
+  for (const auto& file : test::example_files()) {
+    const cpu::Evaluator e = test::load_evaluator(file);
+    CAPTURE(e.program().name);
+    const std::vector<Lobe> lobes = collect_lobes(e.program());
+    const int model = e.program().model;
+    long differs = 0;
+    for (int i = 0; i < 32; ++i) {
+      ShadingContext ctx = at_uv(d.uv());
+      ctx.footprint = i % 2 == 0 ? 0.0f : 1.0e-3f * d.uniform();
+      const cpu::ShadingPoint point = e.bind(ctx);
+      const cpu::ShadingPoint::Stack whole = point.stack();
+      skipping += point.walked_entries() < whole.count ? 1 : 0;
+      for (int j = 0; j < 16; ++j) {
+        const vec3 wi = d.direction(-0.1f), wo = d.direction(-0.1f);
+        const vec2 u(d.uniform(), d.uniform());
+        const float u_lobe = d.uniform();
+        const vec3 f = model == k::LAMINA_MODEL_ENERGY_CONSERVING
+                           ? k::lamina_stack_eval_conserving(whole.count, whole.entries, whole.params, wi, wo)
+                           : k::lamina_stack_eval(whole.count, whole.entries, whole.params, wi, wo);
+        std::array<float, kMaxStackEntries> weight{};
+        std::array<vec3, kMaxStackEntries> v{};
+        std::array<bool, kMaxStackEntries> valid{};
+        k::lamina_stack_select(whole.count, whole.entries, whole.params, wo, weight.data(), v.data(), valid.data());
+        const float pdf = wi.z > 0.0f && wo.z > 0.0f
+                              ? k::lamina_stack_pdf(whole.count, whole.entries, whole.params, weight.data(), v.data(),
+                                                    valid.data(), wi, wo)
+                              : 0.0f;
+        differs += point.eval(wi, wo) == f && point.pdf(wi, wo) == pdf ? 0 : 1;
+        if (wo.z <= 0.0f) continue;
+        const std::vector<float> lobe_weights = point.lobe_weights(wo);
+        for (size_t l = 0; l < lobes.size(); ++l) differs += lobe_weights[l] == weight[size_t(lobes[l].entry)] ? 0 : 1;
+        const int chosen = k::lamina_stack_choose(whole.count, weight.data(), u_lobe);
+        const vec3 drawn = k::lamina_stack_sample(whole.count, whole.entries, whole.params, v.data(), chosen, u);
+        const cpu::Sample sample = point.sample(wo, u, u_lobe);
+        if (drawn.z > 0.0f)
+          differs += sample.wi == drawn && lobes[size_t(sample.lobe)].entry == chosen ? 0 : 1;
+        else
+          differs += sample.pdf == 0.0f ? 0 : 1;
+      }
+    }
+    CHECK(differs == 0);
+  }
+  // The bundled examples include selects over cells (the aventurescent stones).
+  CHECK(skipping > 0);
 }
 
 TEST_CASE("the batch forms reject spans of different lengths and accept empty contexts and empty batches") {
