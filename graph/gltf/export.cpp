@@ -345,6 +345,8 @@ class Writer {
         c["clearcoatTexture"] = Json{{"index", texture}};           // R
         c["clearcoatRoughnessTexture"] = Json{{"index", texture}};  // G
       }
+      if (fallback.clearcoat_normal)
+        c["clearcoatNormalTexture"] = Json{{"index", baked(*fallback.clearcoat_normal, 4)}};
       extensions["KHR_materials_clearcoat"] = c;
     }
     if (fallback.uses_ior) extensions["KHR_materials_ior"] = Json{{"ior", tidy(p.ior)}};

@@ -216,36 +216,53 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   }
 }
 
-// The base's normal at a point: the mean of its substrates' normals, each weighted by its share of
+// Which entries a baked normal texture follows: the base's (glTF's normalTexture: the substrates)
+// or the coat's (KHR_materials_clearcoat's clearcoatNormalTexture: the top interface of each stack
+// a mix blends, the one whose lobe the clearcoat fits).
+enum class Surface { base, coat };
+
+bool on_surface(const std::vector<StackEntry>& stack, size_t i, Surface surface) {
+  const StackEntry& e = stack[i];
+  if (surface == Surface::base) return e.kind == kernels::LAMINA_SUBSTRATE;
+  return e.kind == kernels::LAMINA_LAYER && (e.parent < 0 || stack[size_t(e.parent)].kind == kernels::LAMINA_MIX);
+}
+
+// Whether a texture tilts some entry of the surface.
+bool tilted_by_texture(const Program& program, Surface surface) {
+  for (size_t i = 0; i < program.stack.size(); ++i)
+    if (on_surface(program.stack, i, surface) && program.stack[i].normal.linked()) return true;
+  return false;
+}
+
+// The surface's normal at a point: the mean of its entries' normals, each weighted by its share of
 // the stack (its cells' coverage under a select). Not normalised: texels average it.
-glm::vec3 base_normal(const cpu::Evaluator& evaluator, const ShadingContext& ctx) {
+glm::vec3 surface_normal(const cpu::Evaluator& evaluator, const ShadingContext& ctx, Surface surface) {
   const std::vector<cpu::Evaluator::EntryCover> covers = evaluator.entry_covers(ctx);
   const std::vector<StackEntry>& stack = evaluator.program().stack;
   glm::vec3 sum(0.0f);
   for (size_t i = 0; i < covers.size(); ++i)
-    if (stack[i].kind == kernels::LAMINA_SUBSTRATE) sum += covers[i].share * covers[i].normal;
+    if (on_surface(stack, i, surface)) sum += covers[i].share * covers[i].normal;
   return sum;
 }
 
 // Subsamples per texel side for the normal texture.
 constexpr int kNormalSubsamples = 2;
 
-// A texel of the normal texture: the base normal averaged over it, and whether the texel resolves
-// it (its points' normals agree).
+// A texel of a normal texture: the surface's normal averaged over it, and whether the texel
+// resolves it (its points' normals agree).
 struct TexelNormal {
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   bool resolved = true;
 };
 
-// Texel (row, column) of a size x size bake: the base normal averaged over kNormalSubsamples^2
+// Texel (row, column) of a size x size bake: the surface's normal averaged over kNormalSubsamples^2
 // points of the texel, each with its own share of the footprint, normalised. The fit is of the
 // untilted point (Evaluator::bind_untilted), so the texture puts the tilt back. Texture nodes that
 // filter over the footprint (Voronoi glitter) and those that do not (texture/flakes, sampled
 // without filtering as Elek's flakes are) bake alike, as their mean over the texel. The texel
 // resolves the tilt when the mean of its points' unit normals is longer than cos 1 degree: inside
-// one glitter cell, not over many flakes. An interface's own tilt is not baked: glTF's clearcoat
-// normal is the coat's alone.
-TexelNormal texel_normal(const cpu::Evaluator& evaluator, int row, int column, int size) {
+// one glitter cell, not over many flakes.
+TexelNormal texel_normal(const cpu::Evaluator& evaluator, int row, int column, int size, Surface surface) {
   const int n = kNormalSubsamples;
   ShadingContext ctx;
   ctx.footprint = 1.0f / float(size * n);
@@ -254,7 +271,7 @@ TexelNormal texel_normal(const cpu::Evaluator& evaluator, int row, int column, i
     for (int i = 0; i < n; ++i) {
       ctx.uv =
           glm::vec2((float(column * n + i) + 0.5f) / float(size * n), (float(row * n + j) + 0.5f) / float(size * n));
-      const glm::vec3 normal = base_normal(evaluator, ctx);
+      const glm::vec3 normal = surface_normal(evaluator, ctx, surface);
       sum += normal;
       if (glm::dot(normal, normal) > 0.0f) unit_sum += glm::normalize(normal);
     }
@@ -367,18 +384,21 @@ Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
     texel_params[t] = state_params[static_cast<size_t>(grid.state_of[t])];
   bake(texel_params, size, out);
 
-  // A normal texture only for a stack whose substrates a texture tilts.
-  bool tilts = false;
-  for (const StackEntry& e : program.stack) tilts = tilts || (e.kind == kernels::LAMINA_SUBSTRATE && e.normal.linked());
-  if (tilts) {
+  // A normal texture only for a surface a texture tilts: the base's, and the coat's where the fit
+  // gave the material a clearcoat (without one, the top interface's lobe is the base's specular,
+  // whose normal is the base's).
+  const auto bake_surface = [&](Surface surface) {
     std::vector<TexelNormal> texel_normals(grid.state_of.size());
     parallel_for(static_cast<size_t>(size), [&](size_t row) {
       for (int column = 0; column < size; ++column)
         texel_normals[row * static_cast<size_t>(size) + static_cast<size_t>(column)] =
-            texel_normal(evaluator, static_cast<int>(row), column, size);
+            texel_normal(evaluator, static_cast<int>(row), column, size, surface);
     });
-    out.normal = bake_normals(texel_normals, size);
-  }
+    return bake_normals(texel_normals, size);
+  };
+  if (tilted_by_texture(program, Surface::base)) out.normal = bake_surface(Surface::base);
+  if (out.uses_clearcoat && tilted_by_texture(program, Surface::coat))
+    out.clearcoat_normal = bake_surface(Surface::coat);
   return out;
 }
 

@@ -46,6 +46,9 @@ struct Fallback {
   // lamina's shading frame is glTF's tangent space when the mesh's tangent has w = 1: x along the
   // tangent (u), y = normal x tangent, z the normal; so a texel stores lamina's (x, y, z) as is.
   std::optional<BakedImage> normal;
+  // The same for the coat (KHR_materials_clearcoat's clearcoatNormalTexture) when the fit uses a
+  // clearcoat: baked where the texture nodes tilt the top interface of some stack.
+  std::optional<BakedImage> clearcoat_normal;
   // One fit per distinct texture state (one for an untextured material); `texels` says how many
   // baked texels had that state exactly (0: a representative others interpolate towards).
   struct State {

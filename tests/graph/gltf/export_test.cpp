@@ -230,6 +230,27 @@ TEST_CASE("glTF export: textured materials get baked fallback textures, uniform 
   CHECK(cj["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["index"] == 0);
 }
 
+TEST_CASE("glTF export: a coat tilted by a texture gets a clearcoatNormalTexture, its flat base no normalTexture") {
+  Scene sheet = sheet_of(test::source_dir() / "tests/data/gltf/tilted_coat.json");
+  gltf::ExportOptions options = quick();
+  options.fallback.bake_size = 64;
+  gltf::Export out = gltf::export_scene(sheet, "coat.glb", options);
+  REQUIRE(out.materials.size() == 1);
+  CHECK(out.materials[0].fallback.clearcoat_normal.has_value());
+  Json j = glb_json(out.files[0].bytes);
+  const Json& material = find_material(j, "tilted_coat");
+  CHECK_FALSE(material.contains("normalTexture"));
+  const Json& coat = material["extensions"]["KHR_materials_clearcoat"];
+  REQUIRE(coat.contains("clearcoatNormalTexture"));
+  const int texture = coat["clearcoatNormalTexture"]["index"].get<int>();
+  REQUIRE(texture >= 0);
+  REQUIRE(size_t(texture) < j["textures"].size());
+  // Its own image, not the label's or another baked map's.
+  const int image = j["textures"][size_t(texture)]["source"].get<int>();
+  for (size_t t = 0; t < j["textures"].size(); ++t)
+    if (int(t) != texture) CHECK(j["textures"][t]["source"].get<int>() != image);
+}
+
 TEST_CASE("glTF export: a material bakes at twice its finest detail over uv, a power of two from 64 to 512") {
   auto program_of = [](const std::string& name) {
     const std::filesystem::path file = test::source_dir() / "examples/materials" / name;
