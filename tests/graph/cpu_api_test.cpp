@@ -264,7 +264,7 @@ TEST_CASE("a point's queries skip the stacks no mix shows there and give bit for
         const vec3 drawn = k::lamina_stack_sample(whole.count, whole.entries, whole.params, v.data(), chosen, u);
         const cpu::Sample sample = point.sample(wo, u, u_lobe);
         if (drawn.z > 0.0f)
-          differs += sample.wi == drawn && lobes[size_t(sample.lobe)].entry == chosen ? 0 : 1;
+          differs += sample.wi == drawn && sample.lobe >= 0 && lobes[size_t(sample.lobe)].entry == chosen ? 0 : 1;
         else
           differs += sample.pdf == 0.0f ? 0 : 1;
       }
