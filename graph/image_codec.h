@@ -56,6 +56,12 @@ class ImageCodec {
   virtual std::string encode(const std::string& format, const FloatPixels& pixels,
                              const std::vector<std::pair<std::string, std::string>>& metadata,
                              std::vector<unsigned char>& encoded) const = 0;
+  // Encodes `pixels` (linear, any range) as half floats in `format` ("exr"), the channels named
+  // `channel_names` (one per channel: "R", "G", "B", "albedo.R", ...), with metadata as above.
+  virtual std::string encode_linear(const std::string& format, const FloatPixels& pixels,
+                                    const std::vector<std::string>& channel_names,
+                                    const std::vector<std::pair<std::string, std::string>>& metadata,
+                                    std::vector<unsigned char>& encoded) const = 0;
   // The ink of `text` at `size` pixels in `font` (a font file, or a name to search OpenImageIO's
   // font path for); nothing when the font cannot be used.
   virtual std::optional<TextBox> text_box(const std::string& text, int size, const std::string& font) const = 0;

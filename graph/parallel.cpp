@@ -9,7 +9,9 @@
 
 namespace lamina {
 
-void parallel_for(size_t count, const std::function<void(size_t)>& job) {
+void parallel_for(size_t count, const std::function<void(size_t)>& job) { parallel_for(count, job, 0); }
+
+void parallel_for(size_t count, const std::function<void(size_t)>& job, size_t threads) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr failure;
@@ -25,9 +27,10 @@ void parallel_for(size_t count, const std::function<void(size_t)>& job) {
       }
     }
   };
-  const size_t threads = std::min(count, std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 16));
+  const size_t cores = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 16);
+  const size_t used = std::min(count, threads == 0 ? cores : threads);
   std::vector<std::thread> pool;
-  for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  for (size_t t = 1; t < used; ++t) pool.emplace_back(work);
   work();
   for (std::thread& thread : pool) thread.join();
   if (failure) std::rethrow_exception(failure);

@@ -12,5 +12,7 @@ namespace lamina {
 // that what the jobs compute does not depend on the schedule. If jobs throw, the indices not yet
 // taken are skipped and the first exception is rethrown once every thread has ended.
 void parallel_for(size_t count, const std::function<void(size_t)>& job);
+// The same on at most `threads` threads (0: one per core, as above).
+void parallel_for(size_t count, const std::function<void(size_t)>& job, size_t threads);
 
 }  // namespace lamina

@@ -70,27 +70,8 @@ int run_gltf(const GltfOptions& o) {
   }
   Scene scene;
   Diagnostics diagnostics;
-  try {
-    const std::filesystem::path input(o.input);
-    const AssetPolicy policy = o.input_options.policy_for(input);
-    std::string text;
-    try {
-      text = read_input_file(input, kMaxJsonFileBytes);
-    } catch (const Error& e) {  // too large
-      for (const auto& d : e.diagnostics()) diagnostics.error(d.file, d.pointer, d.message, d.hint);
-    }
-    if (!diagnostics.ok()) {
-    } else if (looks_like_scene(text)) {
-      scene = read_scene(text, input.string(), diagnostics, policy);
-    } else {
-      CheckedFile checked = check_text(text, input.string(), policy);
-      diagnostics = checked.diagnostics;
-      if (checked.ok()) scene = sample_sheet(checked.document, input, o.columns);
-    }
-  } catch (const IoError& e) {
-    print_problem(e.what());
-    return kExitIo;
-  }
+  if (int code = read_scene_input(o.input, o.input_options, o.columns, scene, diagnostics); code != kExitOk)
+    return code;
   if (!print_diagnostics(diagnostics)) return kExitInvalid;
   if (int code = check_outputs({output}); code != kExitOk) return code;  // before the fit
 

@@ -10,6 +10,7 @@
 #include <vector>
 #include "graph/file_access.h"
 #include "graph/load.h"
+#include "graph/scene/scene.h"
 #include "tools/output.h"
 
 namespace lamina::cli {
@@ -32,6 +33,7 @@ void add_plot(CLI::App& app, Runner& runner);
 void add_glsl(CLI::App& app, Runner& runner);
 void add_gltf(CLI::App& app, Runner& runner);
 void add_import(CLI::App& app, Runner& runner);
+void add_render(CLI::App& app, Runner& runner);
 
 // How the commands that read materials, scenes or glTF files follow the files those name
 // (graph/file_access.h): --asset-root DIR (repeatable) and --max-image-pixels N.
@@ -61,6 +63,12 @@ Inputs expand_inputs(const std::vector<std::string>& inputs);
 // failed, else 0. I/O problems are printed as "lamina: ..." lines.
 int for_each_checked_file(const std::vector<std::string>& inputs, const InputOptions& options,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
+
+// Reads `input`: a scene file, or a material file as its sample sheet (one sphere per material in
+// rows of `columns`, graph/scene/scene.h). Problems go to `diagnostics`, unprinted; an input that
+// cannot be read is printed and returns kExitIo. Otherwise kExitOk, whatever the diagnostics say.
+int read_scene_input(const std::string& input, const InputOptions& options, int columns, Scene& scene,
+                     Diagnostics& diagnostics);
 
 // "lamina: TEXT" on stderr, TEXT passed through printable(): how the commands report problems
 // that are not a file's (I/O errors, command-line mistakes, notes).

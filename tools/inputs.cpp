@@ -72,6 +72,32 @@ Inputs expand_inputs(const std::vector<std::string>& inputs) {
   return out;
 }
 
+int read_scene_input(const std::string& input, const InputOptions& options, int columns, Scene& scene,
+                     Diagnostics& diagnostics) {
+  try {
+    const std::filesystem::path path(input);
+    const AssetPolicy policy = options.policy_for(path);
+    std::string text;
+    try {
+      text = read_input_file(path, kMaxJsonFileBytes);
+    } catch (const Error& e) {  // too large
+      for (const auto& d : e.diagnostics()) diagnostics.error(d.file, d.pointer, d.message, d.hint);
+    }
+    if (!diagnostics.ok()) {
+    } else if (looks_like_scene(text)) {
+      scene = read_scene(text, path.string(), diagnostics, policy);
+    } else {
+      CheckedFile checked = check_text(text, path.string(), policy);
+      diagnostics = checked.diagnostics;
+      if (checked.ok()) scene = sample_sheet(checked.document, path, columns);
+    }
+  } catch (const IoError& e) {
+    print_problem(e.what());
+    return kExitIo;
+  }
+  return kExitOk;
+}
+
 int for_each_checked_file(const std::vector<std::string>& inputs, const InputOptions& options,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit) {
   Inputs expanded = expand_inputs(inputs);

@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   add_glsl(app, runner);
   add_gltf(app, runner);
   add_import(app, runner);
+  add_render(app, runner);
   if (unknown_command(app, argc, argv)) return kExitInvalid;
   try {
     app.parse(argc, argv);

@@ -67,3 +67,8 @@ node tests/gltf/validate_gltf.mjs "$gltf/showcase.glb"
 echo
 echo "== lamina import: $gltf/showcase.glb back to lamina materials in $gltf/showcase_import/"
 $lamina import "$gltf/showcase.glb" -o "$gltf/showcase_import/materials.json" --force
+echo
+render=build/render
+mkdir -p "$render"
+echo "== lamina render: examples/showcase.json path traced to $render/showcase.png (480 x 320, 16 samples per pixel)"
+$lamina render examples/showcase.json -o "$render/showcase.png" --width 480 --spp 16 --stats

@@ -114,6 +114,24 @@ class OiioCodec final : public ImageCodec {
     return {};
   }
 
+  std::string encode_linear(const std::string& format, const FloatPixels& pixels,
+                            const std::vector<std::string>& channel_names,
+                            const std::vector<std::pair<std::string, std::string>>& metadata,
+                            std::vector<unsigned char>& encoded) const override {
+    if (channel_names.size() != size_t(pixels.channels)) return "one channel name per channel is needed";
+    OIIO::Filesystem::IOVecOutput proxy(encoded);
+    const std::string name = "image." + format;
+    auto output = OIIO::ImageOutput::create(name, &proxy);
+    if (!output) return "no writer for ." + format + ": " + oiio_error({});
+    if (!output->supports("ioproxy")) return "OpenImageIO's ." + format + " writer cannot write to memory";
+    OIIO::ImageSpec spec(pixels.width, pixels.height, pixels.channels, OIIO::TypeDesc::HALF);
+    spec.channelnames = channel_names;
+    for (const auto& [key, value] : metadata) spec.attribute(key, value);
+    if (!output->open(name, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, pixels.data) || !output->close())
+      return oiio_error(output->geterror());
+    return {};
+  }
+
   std::optional<TextBox> text_box(const std::string& text, int size, const std::string& font) const override {
     const OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(text, size, font);
     if (!roi.defined()) {

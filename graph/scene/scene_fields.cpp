@@ -126,8 +126,11 @@ const std::vector<ParamDecl>& light_fields(LightType type) {
                         .or_default(45.0),
                     range_field()});
   static const std::vector<ParamDecl> environment =
-      with(common, {intensity_field("multiplier of the image's radiance"),
-                    field("file", ValueType::String, "an equirectangular image, relative to the scene file")});
+      with(common, {intensity_field("multiplier of the image's radiance (of the colour's, for a uniform sky)"),
+                    field("file", ValueType::String,
+                          "an equirectangular image, relative to the scene file; none: a uniform sky of radiance "
+                          "color times intensity")
+                        .optional()});
   switch (type) {
     case LightType::Point: return point;
     case LightType::Directional: return directional;

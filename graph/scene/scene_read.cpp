@@ -458,7 +458,7 @@ class SceneReader {
             "the falloff runs from inner_cone to outer_cone");
       return std::nullopt;
     }
-    if (t == LightType::Environment) {
+    if (t == LightType::Environment && v.has("file")) {
       l.file = v.text("file");
       l.resolved_file = resolve(l.file);
       const auto reference = follow(l.file, pointer + "/file", "environment image");

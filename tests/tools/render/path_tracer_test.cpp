@@ -1,0 +1,260 @@
+// lamina render's path tracer against closed forms (a white furnace, a Lambertian plane under a
+// point light, a directional light and a uniform sky), against the evaluator's own albedo for
+// every example, its three estimators against each other, and its determinism.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "graph/cpu/pcg32.h"
+#include "graph/document.h"
+#include "graph/load.h"
+#include "test_support.h"
+#include "tools/render/path_tracer.h"
+
+namespace lamina {
+namespace {
+
+using glm::vec3;
+
+// A scene read from `text` as if it were tests/data/render/scene.json, so that it names the test
+// materials (and the examples) by paths relative to that folder.
+Scene render_scene_text(const std::string& text) {
+  Diagnostics diagnostics;
+  const auto file = test::source_dir() / "tests/data/render/scene.json";
+  Scene scene = read_scene(text, file.string(), diagnostics, test::repository_policy());
+  for (const auto& d : diagnostics.errors()) FAIL_CHECK(format(d));
+  REQUIRE(diagnostics.ok());
+  return scene;
+}
+
+// The mean of `values` and its standard error, treating them as independent draws.
+struct MeanError {
+  double mean = 0.0, error = 0.0;
+};
+MeanError mean_error(const std::vector<double>& values) {
+  MeanError m;
+  for (double v : values) m.mean += v;
+  m.mean /= double(values.size());
+  double variance = 0.0;
+  for (double v : values) variance += (v - m.mean) * (v - m.mean);
+  variance /= double(values.size() - 1);
+  m.error = std::sqrt(variance / double(values.size()));
+  return m;
+}
+
+double average(vec3 c) { return (double(c.x) + double(c.y) + double(c.z)) / 3.0; }
+
+// A camera 4 units in front of a unit sphere at the origin, framing it tightly.
+const char* kSphereCamera =
+    R"({"name": "front", "position": [0, 0, 4], "look_at": [0, 0, 0], "yfov": 20, "aspect": 1})";
+
+std::string sphere_scene(const std::string& material_file, const std::string& material, const std::string& lights) {
+  return R"({"format": 1, "materials": [")" + material_file + R"("], "cameras": [)" + kSphereCamera +
+         R"(], "lights": [)" + lights +
+         R"(], "objects": [{"name": "ball", "shape": "sphere", "radius": 1, "material": ")" + material +
+         R"(", "segments": 128}]})";
+}
+
+// Pixels whose four corners all see the sphere: inside its outline, away from the background.
+std::vector<size_t> interior_pixels(const render::RenderScene& scene, const Camera& camera, int size) {
+  std::vector<size_t> inside;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      bool all = true;
+      for (int corner = 0; corner < 4 && all; ++corner) {
+        const auto ray =
+            render::camera_ray(camera, size, size, glm::vec2(float(x + corner % 2), float(y + corner / 2)));
+        all = scene.intersect(ray.origin, ray.direction, 100.0f).has_value();
+      }
+      if (all) inside.push_back(size_t(y) * size_t(size) + size_t(x));
+    }
+  return inside;
+}
+
+TEST_CASE("a white Lambertian sphere under a uniform sky shows the sky's radiance, by every estimator") {
+  const Scene scene = render_scene_text(
+      sphere_scene("lambert.json", "white", R"({"name": "sky", "type": "environment", "color": [0.7, 0.7, 0.7]})"));
+  const render::RenderScene prepared(scene, test::repository_policy());
+  const int size = 24;
+  const auto inside = interior_pixels(prepared, scene.cameras[0], size);
+  REQUIRE(inside.size() > size_t(size * size / 3));
+  for (auto estimator : {render::Estimator::Mis, render::Estimator::LightSampling, render::Estimator::BrdfSampling}) {
+    render::RenderOptions options;
+    options.width = options.height = size;
+    options.samples = 16;
+    options.estimator = estimator;
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    std::vector<double> values;
+    for (size_t i : inside) values.push_back(average(image.radiance[i]));
+    const MeanError m = mean_error(values);
+    INFO("estimator " << int(estimator) << ": " << m.mean << " +- " << m.error);
+    CHECK(std::abs(m.mean - 0.7) < 5.0 * m.error + 1e-6);
+    // Cosine sampling makes each path's weight 1: what varies is where shading and geometric normals differ.
+    if (estimator == render::Estimator::BrdfSampling) CHECK(m.error < 1e-3 * m.mean);
+  }
+}
+
+TEST_CASE("a Lambertian plane under a point light and under a directional light shows rho E cos / pi") {
+  // Looking straight down at a grey (0.5) plane 2 units below the camera; the light 3 units above it.
+  const std::string common =
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "down", "position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "yfov": 60, "aspect": 1}], "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "grey"}], "lights": [)";
+  const int size = 16;
+  for (const bool point : {true, false}) {
+    const Scene scene = render_scene_text(
+        common + (point ? R"({"name": "bulb", "type": "point", "position": [0.5, 3, 0], "intensity": 90}]})"
+                        : R"({"name": "sun", "type": "directional", "direction": [1, -2, 0.5], "intensity": 4}]})"));
+    const render::RenderScene prepared(scene, test::repository_policy());
+    render::RenderOptions options;
+    options.width = options.height = size;
+    options.samples = 64;
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    double worst = 0.0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        // The pixel's mean over its area: the closed form at 4 x 4 points across it.
+        double expected = 0.0;
+        for (int s = 0; s < 16; ++s) {
+          const auto ray = render::camera_ray(
+              scene.cameras[0], size, size,
+              glm::vec2(float(x) + (float(s % 4) + 0.5f) / 4.0f, float(y) + (float(s / 4) + 0.5f) / 4.0f));
+          const glm::dvec3 p = glm::dvec3(ray.origin) + glm::dvec3(ray.direction) * (2.0 / -double(ray.direction.y));
+          double irradiance;
+          if (point) {
+            const glm::dvec3 d = glm::dvec3(0.5, 3.0, 0.0) - p;
+            const double r = glm::length(d);
+            irradiance = 90.0 * (d.y / r) / (r * r);
+          } else {
+            irradiance = 4.0 * glm::normalize(glm::dvec3(-1.0, 2.0, -0.5)).y;
+          }
+          expected += 0.5 * irradiance / std::numbers::pi / 16.0;
+        }
+        const double found = average(image.radiance[size_t(y * size + x)]);
+        worst = std::max(worst, std::abs(found / expected - 1.0));
+      }
+    INFO((point ? "point" : "directional") << " light: worst relative error " << worst);
+    CHECK(worst < 0.02);  // the jittered samples against a 4 x 4 grid over each pixel
+  }
+}
+
+TEST_CASE("a Lambertian plane under a uniform sky shows rho times the sky") {
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "down", "position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "yfov": 40, "aspect": 1}], "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "grey"}], "lights": [{"name": "sky", "type": "environment", "intensity": 2}]})");
+  const render::RenderScene prepared(scene, test::repository_policy());
+  render::RenderOptions options;
+  options.width = options.height = 16;
+  options.samples = 16;
+  const auto image = render::render(prepared, scene.cameras[0], options);
+  std::vector<double> values;
+  for (const vec3& c : image.radiance) values.push_back(average(c));
+  const MeanError m = mean_error(values);
+  INFO(m.mean << " +- " << m.error);
+  CHECK(std::abs(m.mean - 1.0) < 5.0 * m.error + 1e-6);
+}
+
+std::string example_sphere(const std::filesystem::path& file, const std::string& material, const std::string& lights) {
+  return sphere_scene("../../../examples/materials/" + file.filename().string(), material, lights);
+}
+
+// The image's mean over `pixels`, and its standard error across them.
+MeanError image_mean(const std::vector<vec3>& image, const std::vector<size_t>& pixels) {
+  std::vector<double> values;
+  for (size_t i : pixels) values.push_back(average(image[i]));
+  return mean_error(values);
+}
+
+TEST_CASE("every example on a sphere under a uniform sky reflects the sky times its albedo") {
+  for (const auto& file : test::swept_example_files(0)) {
+    const std::string name = test::load_evaluator(file).program().name;
+    CAPTURE(name);
+    const Scene scene = render_scene_text(example_sphere(file, name, R"({"name": "sky", "type": "environment"})"));
+    const render::RenderScene prepared(scene, test::repository_policy());
+    const int size = 12;
+    const auto inside = interior_pixels(prepared, scene.cameras[0], size);
+    render::RenderOptions options;
+    options.width = options.height = size;
+    options.samples = 16;
+    options.aovs = true;  // the first hit's albedo, by the evaluator's quadrature
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    const MeanError radiance = image_mean(image.radiance, inside), albedo = image_mean(image.albedo, inside);
+    INFO("radiance " << radiance.mean << " +- " << radiance.error << ", albedo " << albedo.mean);
+    CHECK(std::abs(radiance.mean - albedo.mean) < 5.0 * radiance.error + 0.02 * albedo.mean);
+  }
+}
+
+// The largest density the material's sampler reaches at its points: above 64 per steradian (a lobe
+// narrower than about 8 degrees), a lobe is too narrow for light samples alone to find it within a test's
+// budget (their estimate is unbiased, but its rare large values make the error of a short run
+// meaningless), so only BRDF sampling and MIS are compared there.
+float peak_density(const cpu::Evaluator& material) {
+  float peak = 0.0f;
+  cpu::Pcg32 rng(7, 0);
+  for (int i = 0; i < 256; ++i) {
+    ShadingContext ctx;
+    ctx.uv = glm::vec2(rng.uniform(), rng.uniform());
+    const cpu::ShadingPoint point = material.bind(ctx);
+    const float c = rng.uniform();
+    const vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
+    peak = std::max(peak, point.sample(wo, glm::vec2(rng.uniform(), rng.uniform()), rng.uniform()).pdf);
+  }
+  return peak;
+}
+
+TEST_CASE(
+    "BRDF sampling and MIS give the same image of every example under an environment map, and so does light sampling "
+    "where its lobes are wide") {
+  int light_sampled = 0;
+  for (const auto& file : test::swept_example_files(1)) {
+    const cpu::Evaluator material = test::load_evaluator(file);
+    const std::string name = material.program().name;
+    CAPTURE(name);
+    const Scene scene =
+        render_scene_text(example_sphere(file, name, R"({"name": "sky", "type": "environment", "file": "sky.png"})"));
+    const render::RenderScene prepared(scene, test::repository_policy());
+    const int size = 12;
+    const auto inside = interior_pixels(prepared, scene.cameras[0], size);
+    const bool wide = peak_density(material) < 64.0f;
+    light_sampled += wide ? 1 : 0;
+    MeanError found[3];
+    for (int e = 0; e < 3; ++e) {
+      if (e == int(render::Estimator::LightSampling) && !wide) continue;
+      render::RenderOptions options;
+      options.width = options.height = size;
+      options.samples = 32;
+      options.seed = uint64_t(e);
+      options.estimator = render::Estimator(e);
+      found[e] = image_mean(render::render(prepared, scene.cameras[0], options).radiance, inside);
+    }
+    for (int e = 1; e < 3; ++e) {
+      if (e == int(render::Estimator::LightSampling) && !wide) continue;
+      INFO("MIS " << found[0].mean << " +- " << found[0].error << ", estimator " << e << ": " << found[e].mean << " +- "
+                  << found[e].error);
+      CHECK(std::abs(found[e].mean - found[0].mean) < 5.0 * std::hypot(found[0].error, found[e].error));
+    }
+  }
+  MESSAGE(light_sampled << " examples also compared with light sampling alone");
+  CHECK(light_sampled > 0);
+}
+
+TEST_CASE("the same seed gives the same image bit for bit whatever the thread count, and another seed another") {
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json", "../../../examples/materials/aventurine_glass.json"], "cameras": [{"name": "c", "position": [0, 1.5, 4], "look_at": [0, 0.5, 0]}], "lights": [{"name": "sky", "type": "environment", "file": "sky.png"}, {"name": "bulb", "type": "point", "position": [2, 3, 2], "intensity": 20}], "objects": [{"name": "ball", "shape": "sphere", "material": "aventurine_glass", "transform": {"translation": [0, 1, 0]}}, {"name": "floor", "shape": "plane", "size": [6, 6], "material": "grey"}]})");
+  const render::RenderScene prepared(scene, test::repository_policy());
+  render::RenderOptions options;
+  options.width = 24;
+  options.height = 16;
+  options.samples = 4;
+  options.seed = 11;
+  std::vector<std::vector<vec3>> images;
+  for (int threads : {1, 2, 5}) {
+    options.threads = threads;
+    images.push_back(render::render(prepared, scene.cameras[0], options).radiance);
+  }
+  CHECK(images[0] == images[1]);
+  CHECK(images[0] == images[2]);
+  options.seed = 12;
+  CHECK(render::render(prepared, scene.cameras[0], options).radiance != images[0]);
+}
+
+}  // namespace
+}  // namespace lamina

@@ -1,0 +1,244 @@
+#include "tools/render/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "graph/cpu/pcg32.h"
+#include "graph/parallel.h"
+
+namespace lamina::render {
+
+namespace {
+
+using glm::vec2;
+using glm::vec3;
+
+// The power heuristic with beta = 2 (Veach 1997, eq. 9.13) for one sample of each strategy.
+float power_heuristic(float pdf_this, float pdf_other) {
+  const float a = pdf_this * pdf_this, b = pdf_other * pdf_other;
+  return a + b > 0.0f ? a / (a + b) : 0.0f;
+}
+
+float max_component(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// How far a secondary ray starts off the surface, along the geometric normal: a few ulps of the
+// hit's coordinates, so that it does not find its own triangle again.
+vec3 offset_origin(vec3 position, vec3 geometric_normal, vec3 direction) {
+  const float scale =
+      1.0e-4f * (1.0f + std::max(std::abs(position.x), std::max(std::abs(position.y), std::abs(position.z))));
+  return position + geometric_normal * (glm::dot(direction, geometric_normal) >= 0.0f ? scale : -scale);
+}
+
+// KHR_lights_punctual's recommended attenuation of a point or spot light at `distance` (the range's
+// smooth window, and the spot's cone with a squared linear falloff), without the 1 / d^2.
+float punctual_attenuation(const PunctualLight& light, float distance, vec3 towards_point) {
+  float a = 1.0f;
+  if (light.range > 0.0f) {
+    const float r = distance / light.range;
+    a = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+    a *= a;
+  }
+  if (light.type == LightType::Spot) {
+    const float scale = 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer);
+    const float t = std::clamp((glm::dot(towards_point, light.direction) - light.cos_outer) * scale, 0.0f, 1.0f);
+    a *= t * t;
+  }
+  return a;
+}
+
+// A pixel's footprint in uv: the ray cone's width where it meets the surface, stretched by the
+// obliquity of the hit (a cone meeting a surface at angle theta covers 1 / cos theta more of it, up to
+// 20 times), in uv units through the triangle's uv-per-length.
+float uv_footprint(float cone_width, float cos_view, float uv_per_length) {
+  return cone_width / std::max(std::abs(cos_view), 0.05f) * uv_per_length;
+}
+
+struct Counters {
+  uint64_t camera = 0, shadow = 0, bounce = 0;
+};
+
+struct PathResult {
+  vec3 radiance{0.0f};
+  vec3 albedo{0.0f};
+  vec3 normal{0.0f};
+};
+
+// The albedo AOV is the evaluator's quadrature at the first hit: costly, so only the first few samples of a
+// pixel compute it, enough to average it over the pixel's area.
+constexpr int kAovSamples = 4;
+
+PathResult trace(const RenderScene& scene, const RenderOptions& options, const CameraRay& camera, bool aovs,
+                 cpu::Pcg32& rng, Counters& counters) {
+  PathResult result;
+  const Environment& environment = scene.environment();
+  const bool sample_lights = options.estimator != Estimator::BrdfSampling;
+  const bool count_escapes = options.estimator != Estimator::LightSampling;
+  vec3 origin = camera.origin, direction = camera.direction;
+  vec3 throughput(1.0f);
+  float travelled = 0.0f;     // the path's length so far, for the ray cone and the view distance
+  float previous_pdf = 0.0f;  // the BRDF density of the direction just drawn
+  ++counters.camera;
+  for (int depth = 0;; ++depth) {
+    const auto hit = scene.intersect(origin, direction, std::numeric_limits<float>::infinity());
+    if (!hit) {
+      if (!environment.present()) break;
+      const vec3 radiance = environment.radiance(direction);
+      if (depth == 0) {
+        result.radiance += throughput * radiance;
+      } else if (count_escapes) {
+        const float weight = sample_lights ? power_heuristic(previous_pdf, environment.pdf(direction)) : 1.0f;
+        result.radiance += throughput * radiance * weight;
+      }
+      break;
+    }
+    if (depth >= options.max_depth) break;  // light arriving at this surface was counted; none leaves it
+    travelled += hit->distance;
+    const vec3 wo = -direction;
+    // Surfaces are two-sided: the side the ray arrives on is the front.
+    vec3 ng = hit->geometric_normal, n = hit->normal;
+    if (glm::dot(ng, wo) < 0.0f) {
+      ng = -ng;
+      n = -n;
+    }
+    ShadingContext ctx;
+    ctx.uv = hit->uv;
+    ctx.position = hit->position;
+    ctx.normal = n;
+    ctx.tangent = hit->tangent;
+    ctx.view_distance = travelled;
+    ctx.footprint = uv_footprint(camera.spread * travelled, glm::dot(n, wo), hit->uv_per_length);
+    const cpu::Evaluator& material = scene.material(hit->object);
+    const cpu::ShadingPoint point = material.bind(ctx);
+    if (depth == 0 && aovs) {
+      result.normal = n;
+      result.albedo = point.albedo(wo, 16);
+    }
+
+    if (sample_lights) {
+      for (const PunctualLight& light : scene.lights()) {
+        vec3 wi, incident;
+        float distance = std::numeric_limits<float>::infinity();
+        if (light.type == LightType::Directional) {
+          wi = -light.direction;
+          incident = light.intensity;
+        } else {
+          const vec3 d = light.position - hit->position;
+          distance = glm::length(d);
+          if (!(distance > 0.0f)) continue;
+          wi = d / distance;
+          incident = light.intensity * punctual_attenuation(light, distance, -wi) / (distance * distance);
+        }
+        if (glm::dot(wi, ng) <= 0.0f || max_component(incident) <= 0.0f) continue;
+        const vec3 f = point.eval(wi, wo);
+        if (max_component(f) <= 0.0f) continue;
+        ++counters.shadow;
+        const vec3 from = offset_origin(hit->position, ng, wi);
+        if (scene.occluded(from, wi, std::isinf(distance) ? distance : distance * (1.0f - 1.0e-4f))) continue;
+        result.radiance += throughput * f * std::max(glm::dot(n, wi), 0.0f) * incident;
+      }
+      if (environment.present()) {
+        const vec2 u(rng.uniform(), rng.uniform());
+        const EnvironmentSample s = environment.sample(u);
+        if (s.pdf > 0.0f && glm::dot(s.wi, ng) > 0.0f) {
+          const cpu::EvalPdf brdf = point.eval_pdf(s.wi, wo);
+          if (max_component(brdf.f) > 0.0f) {
+            ++counters.shadow;
+            if (!scene.occluded(offset_origin(hit->position, ng, s.wi), s.wi, std::numeric_limits<float>::infinity())) {
+              const float weight = count_escapes ? power_heuristic(s.pdf, brdf.pdf) : 1.0f;
+              result.radiance +=
+                  throughput * brdf.f * std::max(glm::dot(n, s.wi), 0.0f) * s.radiance * (weight / s.pdf);
+            }
+          }
+        }
+      }
+    }
+
+    const vec2 u(rng.uniform(), rng.uniform());
+    const cpu::Sample s = point.sample(wo, u, rng.uniform());
+    const float cos_i = glm::dot(n, s.wi);
+    if (!(s.pdf > 0.0f) || cos_i <= 0.0f || glm::dot(s.wi, ng) <= 0.0f) break;
+    throughput *= s.f * (cos_i / s.pdf);
+    previous_pdf = s.pdf;
+    if (depth + 1 >= options.roulette_depth) {
+      // Continue with the probability of the path's throughput (at most 0.95: every path ends).
+      const float q = std::min(0.95f, max_component(throughput));
+      if (!(rng.uniform() < q)) break;
+      throughput /= q;
+    }
+    origin = offset_origin(hit->position, ng, s.wi);
+    direction = s.wi;
+    ++counters.bounce;
+  }
+  return result;
+}
+
+}  // namespace
+
+CameraRay camera_ray(const Camera& camera, int width, int height, vec2 pixel) {
+  const vec3 position(camera.position), forward = glm::normalize(vec3(camera.look_at) - position);
+  const vec3 right = glm::normalize(glm::cross(forward, vec3(camera.up)));
+  const vec3 up = glm::cross(right, forward);
+  const float tan_half = float(std::tan(glm::radians(camera.yfov_deg) / 2.0));
+  const float aspect = float(width) / float(height);
+  const float sx = (2.0f * pixel.x / float(width) - 1.0f) * tan_half * aspect;
+  const float sy = (1.0f - 2.0f * pixel.y / float(height)) * tan_half;
+  CameraRay ray;
+  ray.origin = position;
+  ray.direction = glm::normalize(forward + sx * right + sy * up);
+  ray.spread = 2.0f * tan_half / float(height);
+  return ray;
+}
+
+RenderResult render(const RenderScene& scene, const Camera& camera, const RenderOptions& options) {
+  RenderResult result;
+  result.width = options.width;
+  result.height = options.height;
+  const size_t pixels = size_t(options.width) * size_t(options.height);
+  result.radiance.assign(pixels, vec3(0.0f));
+  if (options.aovs) {
+    result.albedo.assign(pixels, vec3(0.0f));
+    result.normal.assign(pixels, vec3(0.0f));
+  }
+  std::vector<Counters> row_counters(size_t(options.height));
+  std::atomic<int> rows_done{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  auto render_row = [&](size_t row) {
+    Counters& counters = row_counters[row];
+    for (int x = 0; x < options.width; ++x) {
+      const size_t index = row * size_t(options.width) + size_t(x);
+      // One stream per pixel: what a pixel draws does not depend on which thread renders it.
+      cpu::Pcg32 rng(options.seed, uint64_t(index));
+      PathResult sum;
+      for (int s = 0; s < options.samples; ++s) {
+        const vec2 jitter(rng.uniform(), rng.uniform());
+        const CameraRay ray = camera_ray(camera, options.width, options.height, vec2(float(x), float(row)) + jitter);
+        const PathResult path = trace(scene, options, ray, options.aovs && s < kAovSamples, rng, counters);
+        sum.radiance += path.radiance;
+        sum.albedo += path.albedo;
+        sum.normal += path.normal;
+      }
+      const float inverse = 1.0f / float(options.samples);
+      result.radiance[index] = sum.radiance * inverse;
+      if (options.aovs) {
+        result.albedo[index] = sum.albedo / float(std::min(options.samples, kAovSamples));
+        const float length = glm::length(sum.normal);
+        result.normal[index] = length > 0.0f ? sum.normal / length : vec3(0.0f);
+      }
+    }
+    const int done = ++rows_done;
+    if (options.progress && std::this_thread::get_id() == caller)
+      options.progress(double(done) / double(options.height));
+  };
+  parallel_for(size_t(options.height), render_row, size_t(std::max(options.threads, 0)));
+  for (const Counters& c : row_counters) {
+    result.camera_rays += c.camera;
+    result.shadow_rays += c.shadow;
+    result.bounce_rays += c.bounce;
+  }
+  if (options.progress) options.progress(1.0);
+  return result;
+}
+
+}  // namespace lamina::render

@@ -1,0 +1,251 @@
+#include "tools/render/render_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <mutex>
+
+#include "graph/compile.h"
+
+namespace lamina::render {
+
+// The Embree device, and the first error it reported: Embree reports errors through a callback and
+// carries on, so every call that can fail is followed by check().
+class Device {
+ public:
+  Device() {
+    device_ = rtcNewDevice("verbose=0");
+    if (!device_) throw IoError("Embree: cannot create a device (" + code_text(rtcGetDeviceError(nullptr)) + ")");
+    rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
+  }
+  ~Device() { rtcReleaseDevice(device_); }
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  RTCDevice get() const { return device_; }
+  void check(const char* what) {
+    std::lock_guard lock(mutex_);
+    if (!error_.empty()) throw IoError(std::string("Embree: ") + what + ": " + error_);
+  }
+
+ private:
+  static std::string code_text(RTCError code) {
+    switch (code) {
+      case RTC_ERROR_NONE: return "no error";
+      case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+      case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+      case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+      case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+      case RTC_ERROR_CANCELLED: return "cancelled";
+      default: return "unknown error";
+    }
+  }
+  static void on_error(void* self, RTCError code, const char* text) {
+    auto* device = static_cast<Device*>(self);
+    std::lock_guard lock(device->mutex_);
+    if (device->error_.empty()) device->error_ = code_text(code) + (text ? std::string(": ") + text : "");
+  }
+
+  RTCDevice device_ = nullptr;
+  std::mutex mutex_;
+  std::string error_;
+};
+
+namespace {
+
+glm::dmat4 object_to_world(const Transform& t) {
+  return glm::translate(glm::dmat4(1.0), t.translation) * glm::mat4_cast(t.rotation) *
+         glm::scale(glm::dmat4(1.0), t.scale);
+}
+
+// A bottom-level scene holding one triangle mesh.
+RTCScene mesh_scene(Device& device, const TriangleMesh& mesh) {
+  RTCScene scene = rtcNewScene(device.get());
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.positions.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.indices.size() / 3));
+  device.check("allocating a mesh");
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + size_t(c)] = mesh.positions[i][c];
+  std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(scene, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  device.check("building a mesh's hierarchy");
+  return scene;
+}
+
+RTCRayHit make_ray(glm::vec3 origin, glm::vec3 direction, float t_max) {
+  RTCRayHit r{};
+  r.ray.org_x = origin.x, r.ray.org_y = origin.y, r.ray.org_z = origin.z;
+  r.ray.dir_x = direction.x, r.ray.dir_y = direction.y, r.ray.dir_z = direction.z;
+  r.ray.tnear = 0.0f;
+  r.ray.tfar = t_max;
+  r.ray.mask = ~0u;
+  r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return r;
+}
+
+}  // namespace
+
+const Camera* check_renderable(const Scene& scene, const std::string& camera_name, Diagnostics& diagnostics) {
+  const Camera* camera = nullptr;
+  if (scene.cameras.empty()) {
+    diagnostics.error(scene.path, "/cameras", "the scene has no camera to render from",
+                      "add one, e.g. {\"name\": \"main\", \"position\": [0, 1, 5], \"look_at\": [0, 0, 0]}");
+  } else if (camera_name.empty()) {
+    camera = &scene.cameras.front();
+  } else {
+    std::vector<std::string> names;
+    for (const Camera& c : scene.cameras) {
+      names.push_back(c.name);
+      if (c.name == camera_name) camera = &c;
+    }
+    if (!camera) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + quote_excerpt(n);
+      const std::string close = diagnostics.suggest(camera_name, names);
+      diagnostics.error(scene.path, "/cameras",
+                        "no camera called " + quote_excerpt(camera_name) + "; the scene has " + list,
+                        close.empty() ? std::string() : "did you mean " + quote_excerpt(close) + "?");
+    }
+  }
+  int environments = 0;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const std::string pointer = "/lights/" + std::to_string(i);
+    if (l.type == LightType::Environment && ++environments > 1)
+      diagnostics.error(scene.path, pointer, "a second environment light: a scene is lit by at most one",
+                        "combine them into one image");
+    if (l.intensity == 0.0 || glm::dvec3(l.color) == glm::dvec3(0.0))
+      diagnostics.warning(scene.path, pointer + "/intensity", "light " + quote_excerpt(l.name) + " emits nothing");
+  }
+  if (scene.lights.empty())
+    diagnostics.error(scene.path, "/lights",
+                      "the scene has no light and no environment: every image of it would be black",
+                      "add a light, or an environment: {\"name\": \"sky\", \"type\": \"environment\"} is a "
+                      "uniform white sky");
+  return diagnostics.ok() ? camera : nullptr;
+}
+
+RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy) : device_(std::make_unique<Device>()) {
+  top_ = rtcNewScene(device_->get());
+  std::map<std::string, int> mesh_of_key, material_of_name;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    const std::string key = geometry_key(object);
+    auto [it, added] = mesh_of_key.try_emplace(key, int(meshes_.size()));
+    if (added) {
+      Mesh m;
+      m.mesh = object_mesh(object, policy);
+      m.scene = mesh_scene(*device_, m.mesh);
+      meshes_.push_back(std::move(m));
+    }
+    Instance instance;
+    instance.mesh = it->second;
+    const glm::dmat4 to_world = object_to_world(object.transform);
+    instance.to_world = glm::mat4(to_world);
+    instance.normal_to_world = glm::mat3(glm::transpose(glm::inverse(glm::dmat3(to_world))));
+    instance.mirrored = glm::determinant(glm::dmat3(to_world)) < 0.0;
+    instances_.push_back(instance);
+
+    RTCGeometry geometry = rtcNewGeometry(device_->get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geometry, meshes_[size_t(instance.mesh)].scene);
+    rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &instance.to_world[0][0]);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(top_, geometry, unsigned(i));
+    rtcReleaseGeometry(geometry);
+    device_->check("instancing an object");
+
+    // The scene's bounds, for ray offsets: every vertex of the instance.
+    for (const glm::vec3& p : meshes_[size_t(instance.mesh)].mesh.positions)
+      extent_ = std::max(extent_, glm::length(glm::vec3(instance.to_world * glm::vec4(p, 1.0f))));
+
+    auto [material, new_material] = material_of_name.try_emplace(object.material, int(materials_.size()));
+    if (new_material) {
+      const MaterialFileRef* file = nullptr;
+      scene.find_material(object.material, &file);
+      materials_.push_back(std::make_unique<cpu::Evaluator>(compile(file->document, object.material)));
+    }
+    object_material_.push_back(material->second);
+  }
+  rtcCommitScene(top_);
+  device_->check("building the scene's hierarchy");
+
+  for (const Light& l : scene.lights) {
+    const glm::vec3 scaled = glm::vec3(l.color) * float(l.intensity);
+    if (l.type == LightType::Environment) {
+      environment_ =
+          l.file.empty() ? Environment(scaled) : Environment(load_image_reference(l.reference, false, policy), scaled);
+      continue;
+    }
+    PunctualLight p;
+    p.type = l.type;
+    p.intensity = scaled;
+    p.position = glm::vec3(l.position);
+    p.direction = glm::normalize(glm::vec3(l.direction));
+    p.cos_outer = float(std::cos(glm::radians(l.outer_cone_deg)));
+    p.cos_inner = float(std::cos(glm::radians(l.inner_cone_deg)));
+    p.range = l.range ? float(*l.range) : 0.0f;
+    lights_.push_back(p);
+  }
+}
+
+RenderScene::~RenderScene() {
+  if (top_) rtcReleaseScene(top_);
+  for (Mesh& m : meshes_) rtcReleaseScene(m.scene);
+}
+
+std::optional<SurfaceHit> RenderScene::intersect(glm::vec3 origin, glm::vec3 direction, float t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit r = make_ray(origin, direction, t_max);
+  rtcIntersect1(top_, &context, &r);
+  if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+  SurfaceHit hit;
+  hit.object = int(r.hit.instID[0]);
+  const Instance& instance = instances_[size_t(hit.object)];
+  const TriangleMesh& mesh = meshes_[size_t(instance.mesh)].mesh;
+  const uint32_t* corner = &mesh.indices[3 * size_t(r.hit.primID)];
+  const float b1 = r.hit.u, b2 = r.hit.v, b0 = 1.0f - b1 - b2;
+  auto lerp3 = [&](const auto& values) {
+    return b0 * values[corner[0]] + b1 * values[corner[1]] + b2 * values[corner[2]];
+  };
+
+  const glm::vec3 p0 = glm::vec3(instance.to_world * glm::vec4(mesh.positions[corner[0]], 1.0f));
+  const glm::vec3 p1 = glm::vec3(instance.to_world * glm::vec4(mesh.positions[corner[1]], 1.0f));
+  const glm::vec3 p2 = glm::vec3(instance.to_world * glm::vec4(mesh.positions[corner[2]], 1.0f));
+  const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
+  const float twice_area = glm::length(cross);
+  hit.distance = r.ray.tfar;
+  hit.position = b0 * p0 + b1 * p1 + b2 * p2;
+  hit.geometric_normal =
+      twice_area > 0.0f ? cross / twice_area * (instance.mirrored ? -1.0f : 1.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::vec3 n = instance.normal_to_world * lerp3(mesh.normals);
+  const float n_length = glm::length(n);
+  hit.normal = n_length > 0.0f ? n / n_length : hit.geometric_normal;
+  if (glm::dot(hit.normal, hit.geometric_normal) < 0.0f) hit.normal = -hit.normal;
+  const glm::vec4 t0 = mesh.tangents[corner[0]], t1 = mesh.tangents[corner[1]], t2 = mesh.tangents[corner[2]];
+  hit.tangent = glm::mat3(instance.to_world) * (b0 * glm::vec3(t0) + b1 * glm::vec3(t1) + b2 * glm::vec3(t2));
+  hit.uv = lerp3(mesh.uvs);
+  const glm::vec2 e1 = mesh.uvs[corner[1]] - mesh.uvs[corner[0]], e2 = mesh.uvs[corner[2]] - mesh.uvs[corner[0]];
+  const float twice_uv_area = std::abs(e1.x * e2.y - e1.y * e2.x);
+  hit.uv_per_length = twice_area > 0.0f ? std::sqrt(twice_uv_area / twice_area) : 0.0f;
+  return hit;
+}
+
+bool RenderScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit r = make_ray(origin, direction, t_max);
+  rtcOccluded1(top_, &context, &r.ray);
+  return r.ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace lamina::render
