@@ -1,15 +1,15 @@
 // lamina render SCENE.json -o OUT.png|OUT.exr: the scene (or a material file's sample sheet) path
 // traced with lamina's own eval, sample and pdf at every hit (tools/render/path_tracer.h).
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include "graph/image_codec.h"
-#include "nodes/kernels/kernels.h"
 #include "tools/commands.h"
+#include "tools/figure_file.h"
+#include "tools/progress.h"
+#include "tools/render/display.h"
 #include "tools/render/path_tracer.h"
 
 namespace lamina::cli {
@@ -40,48 +40,6 @@ struct RenderCliOptions {
   InputOptions input_options;
 };
 
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  if (!e.empty()) e.erase(0, 1);
-  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
-// The displayed value of a linear radiance after the exposure: "clip" keeps it and clips to 1 (what
-// a comparison with a shader wants), "reinhard" maps each channel x to x / (1 + x) (Reinhard et al.
-// 2002, eq. 3), so that highlights roll off instead of clipping.
-glm::vec3 tone_map(glm::vec3 c, bool reinhard) {
-  if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) return glm::vec3(0.0f);
-  c = glm::max(c, glm::vec3(0.0f));
-  if (reinhard) c = c / (glm::vec3(1.0f) + c);
-  return glm::min(c, glm::vec3(1.0f));
-}
-
-// A progress bar with the estimated time left, redrawn on one line of a terminal.
-class Progress {
- public:
-  explicit Progress(bool shown) : shown_(shown), start_(std::chrono::steady_clock::now()) {}
-  void operator()(double done) {
-    if (!shown_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const int percent = int(done * 100.0);
-    if (percent == last_ && done < 1.0) return;
-    last_ = percent;
-    const int width = 30, filled = int(done * width);
-    std::string bar(size_t(filled), '#');
-    bar.resize(size_t(width), '.');
-    const double left = done > 0.0 ? elapsed * (1.0 - done) / done : 0.0;
-    std::fprintf(stderr, "\r[%s] %3d%%  %.0f s, %.0f s left ", bar.c_str(), percent, elapsed, left);
-    if (done >= 1.0) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  bool shown_;
-  std::chrono::steady_clock::time_point start_;
-  int last_ = -1;
-};
-
 int run_render(const RenderCliOptions& o) {
   auto refuse = [](const std::string& text) {
     print_problem(text);
@@ -93,10 +51,10 @@ int run_render(const RenderCliOptions& o) {
   if (o.max_depth < 1 || o.max_depth > kMaxRenderDepth) return refuse("--max-depth: expected 1 to 1024 surfaces");
   if (o.threads < 0 || o.threads > 1024) return refuse("--threads: expected 0 (one per core) to 1024");
   if (!(std::abs(o.exposure) <= kMaxRenderExposure)) return refuse("--exposure: expected -64 to 64 stops");
-  const std::string image_format = lower_extension(o.output);
-  const bool exr = image_format == "exr";
+  const std::string output_format = image_format(o.output);
+  const bool exr = output_format == "exr";
   try {
-    if (image_format.empty() || !image_codec().writes(image_format))
+    if (output_format.empty() || !image_codec().writes(output_format))
       return refuse("-o: cannot tell an image format from '" + o.output + "' (name the file e.g. render.png or .exr)");
   } catch (const IoError& e) {
     print_problem(e.what());
@@ -124,7 +82,7 @@ int run_render(const RenderCliOptions& o) {
   options.estimator = o.estimator == "light"  ? render::Estimator::LightSampling
                       : o.estimator == "brdf" ? render::Estimator::BrdfSampling
                                               : render::Estimator::Mis;
-  Progress progress(isatty(STDERR_FILENO) != 0);
+  Progress progress;
   options.progress = [&progress](double done) { progress(done); };
 
   render::RenderResult image;
@@ -141,14 +99,16 @@ int run_render(const RenderCliOptions& o) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const float scale = float(std::exp2(o.exposure));
+  const float scale = float(std::exp2(camera->exposure + o.exposure));
   const size_t pixels = image.radiance.size();
   const int channels = o.aovs ? 9 : 3;
   std::vector<float> data(pixels * size_t(channels));
   for (size_t i = 0; i < pixels; ++i) {
     float* p = &data[i * size_t(channels)];
-    const glm::vec3 c = exr ? image.radiance[i] * scale
-                            : kernels::srgb_from_linear(tone_map(image.radiance[i] * scale, o.tone_map == "reinhard"));
+    const glm::vec3 c =
+        exr ? image.radiance[i] * scale
+            : render::display_srgb(image.radiance[i], scale,
+                                   o.tone_map == "reinhard" ? render::ToneMap::Reinhard : render::ToneMap::Clip);
     for (int k = 0; k < 3; ++k) p[k] = c[k];
     if (o.aovs)
       for (int k = 0; k < 3; ++k) {
@@ -164,9 +124,9 @@ int run_render(const RenderCliOptions& o) {
   if (exr) {
     std::vector<std::string> names{"R", "G", "B"};
     if (o.aovs) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"});
-    why = image_codec().encode_linear(image_format, view, names, {{"ImageDescription", description}}, encoded);
+    why = image_codec().encode_linear(output_format, view, names, {{"ImageDescription", description}}, encoded);
   } else {
-    why = image_codec().encode(image_format, view, {{"oiio:ColorSpace", "sRGB"}, {"ImageDescription", description}},
+    why = image_codec().encode(output_format, view, {{"oiio:ColorSpace", "sRGB"}, {"ImageDescription", description}},
                                encoded);
   }
   if (!why.empty()) {
@@ -204,7 +164,9 @@ void add_render(CLI::App& app, Runner& runner) {
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads; 0: one per core")->capture_default_str();
   cmd->add_option("--max-depth", o->max_depth, "surfaces a path may meet")->capture_default_str();
-  cmd->add_option("--exposure", o->exposure, "stops: the image's radiance is multiplied by 2^EXPOSURE")
+  cmd->add_option(
+         "--exposure", o->exposure,
+         "stops added to the camera's exposure: the image's radiance is multiplied by 2^(camera exposure + EXPOSURE)")
       ->capture_default_str();
   cmd->add_option("--tone-map", o->tone_map, "clip (linear, clipped at 1) or reinhard (x / (1 + x) per channel)")
       ->check(CLI::IsMember({"clip", "reinhard"}))

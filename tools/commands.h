@@ -34,6 +34,7 @@ void add_glsl(CLI::App& app, Runner& runner);
 void add_gltf(CLI::App& app, Runner& runner);
 void add_import(CLI::App& app, Runner& runner);
 void add_render(CLI::App& app, Runner& runner);
+void add_preview(CLI::App& app, Runner& runner);
 
 // How the commands that read materials, scenes or glTF files follow the files those name
 // (graph/file_access.h): --asset-root DIR (repeatable) and --max-image-pixels N.

@@ -11,15 +11,20 @@
 
 namespace lamina::cli {
 
+std::string image_format(const std::string& path) {
+  std::string format = std::filesystem::path(path).extension().string();
+  if (!format.empty()) format.erase(0, 1);
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return format;
+}
+
 int prepare_figure(const std::string& option, const std::string& path, int width, FigureFile& figure) {
   if (width < kFigureMinSize || width > kFigureMaxSize) {
     std::cerr << "lamina: --size: " << width << " is outside [" << kFigureMinSize << ", " << kFigureMaxSize
               << "] (the width in pixels; the height is half of it)\n";
     return kExitInvalid;
   }
-  std::string format = std::filesystem::path(path).extension().string();
-  if (!format.empty()) format.erase(0, 1);
-  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string format = image_format(path);
   try {
     if (format.empty() || !image_codec().writes(format)) {
       print_problem(option + ": cannot tell an image format from '" + path + "' (name the file e.g. plot.png)");

@@ -20,6 +20,9 @@ struct FigureFile {
   plot::Fonts fonts;
 };
 
+// The image format a path's extension names, lower case without the dot ("png", "exr"); "" for none.
+std::string image_format(const std::string& path);
+
 // Checks the width (`--size`, the height is half of it) and that `path` names a format OpenImageIO
 // writes, and finds the fonts; prints the problem and returns its exit code otherwise.
 int prepare_figure(const std::string& option, const std::string& path, int width, FigureFile& figure);

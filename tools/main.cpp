@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   add_gltf(app, runner);
   add_import(app, runner);
   add_render(app, runner);
+  add_preview(app, runner);
   if (unknown_command(app, argc, argv)) return kExitInvalid;
   try {
     app.parse(argc, argv);

@@ -115,8 +115,16 @@ class Writer {
                                "directional lights only); it is not written");
         continue;
       }
+      if (light.angular_radius_deg > 0.0)
+        result.notes.push_back("directional light '" + light.name +
+                               "' is written as a point at infinity: KHR_lights_punctual has no angular radius");
       scene_nodes.push_back(add_light(light));
     }
+    for (const auto& object : scene_.objects)
+      if (object.emission != glm::dvec3(0.0))
+        result.notes.push_back("object '" + object.name +
+                               "' emits light, which is not written: a glTF material's emission belongs to the "
+                               "material, shared by every object that uses it");
     fit_fallbacks();
     for (const auto& object : scene_.objects) scene_nodes.push_back(add_object(object));
     for (const auto& object : scene_.objects)

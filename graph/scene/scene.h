@@ -31,6 +31,7 @@ struct Camera {
   double aspect = 1.5;     // width / height
   double znear = 0.05;
   std::optional<double> zfar;  // none: infinite projection
+  double exposure = 0.0;       // stops: lamina render multiplies the image's radiance by 2^exposure
 };
 
 enum class LightType { Point, Directional, Spot, Environment };
@@ -46,6 +47,7 @@ struct Light {
   glm::dvec3 direction{0.0, -1.0, 0};   // directional, spot: where the light travels
   double inner_cone_deg = 0.0;          // spot
   double outer_cone_deg = 45.0;         // spot
+  double angular_radius_deg = 0.0;      // directional: the source's apparent radius (0: a point at infinity)
   std::optional<double> range;          // point, spot
   std::string file;                     // environment: an equirectangular image, as written
   std::filesystem::path resolved_file;  // environment: the file against the scene's folder, lexically normal
@@ -84,8 +86,9 @@ struct SceneObject {
   std::filesystem::path resolved_mesh_file;  // mesh: against the scene's folder, lexically normal
   Reference mesh_reference;                  // mesh: the file as file_access.h follows it
   Transform transform;
-  std::string material;  // a material name from one of the scene's material files
-  std::string label;     // shown under the object by the glTF export; empty: none
+  std::string material;      // a material name from one of the scene's material files
+  std::string label;         // shown under the object by the glTF export; empty: none
+  glm::dvec3 emission{0.0};  // radiance leaving its front faces [cd/m^2], linear RGB; 0: none
 };
 
 struct MaterialFileRef {

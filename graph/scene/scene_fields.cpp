@@ -47,7 +47,8 @@ ParamDecl segments_field() {
 }
 
 std::vector<ParamDecl> object_common() {
-  return {name_field("object"), shape_field(),
+  return {name_field("object"),
+          shape_field(),
           field("material", ValueType::String, "the name of a material defined in one of the scene's material files"),
           field("transform", ValueType::Object,
                 "placement of the object: scale, then rotation, then translation (glTF's order)")
@@ -56,7 +57,12 @@ std::vector<ParamDecl> object_common() {
                 "text shown under the object in glTF viewers, on an unlit quad facing the first camera; none: no "
                 "label")
               .optional()
-              .at_most_characters(kMaxLabelLength)};
+              .at_most_characters(kMaxLabelLength),
+          field("emission", ValueType::Color,
+                "radiance its front faces emit [cd/m^2], linear RGB: lamina render lights the scene with it; none: "
+                "no emission")
+              .at_least(0.0)
+              .optional()};
 }
 
 std::vector<ParamDecl> with(std::vector<ParamDecl> fields, const std::vector<ParamDecl>& more) {
@@ -101,6 +107,10 @@ const std::vector<ParamDecl>& camera_fields() {
       field("aspect", ValueType::Float, "width / height of the image").above(0.0).at_most(100.0).or_default(1.5),
       positive("znear", "distance to the near clipping plane [scene units]").or_default(0.05),
       positive("zfar", "distance to the far clipping plane, greater than znear; none: infinite projection").optional(),
+      field("exposure", ValueType::Float,
+            "stops: lamina render multiplies the image's radiance by 2^exposure (and --exposure adds to it)")
+          .range(-64.0, 64.0)
+          .or_default(0.0),
   };
   return fields;
 }
@@ -111,7 +121,13 @@ const std::vector<ParamDecl>& light_fields(LightType type) {
       with(common, {intensity_field("luminous intensity [candela] (KHR_lights_punctual)"),
                     point3("position", "where the light is [scene units]", Vec3d{0.0, 0.0, 0.0}), range_field()});
   static const std::vector<ParamDecl> directional =
-      with(common, {intensity_field("illuminance [lux] (KHR_lights_punctual)"), direction_field()});
+      with(common, {intensity_field("illuminance [lux] (KHR_lights_punctual)"), direction_field(),
+                    field("angular_radius", ValueType::Float,
+                          "the source's apparent radius [degrees] (the sun: 0.27); 0: a point at infinity with sharp "
+                          "shadows. lamina render only; glTF has no counterpart")
+                        .at_least(0.0)
+                        .at_most(45.0)
+                        .or_default(0.0)});
   static const std::vector<ParamDecl> spot =
       with(common, {intensity_field("luminous intensity [candela] (KHR_lights_punctual)"),
                     point3("position", "where the light is [scene units]", Vec3d{0.0, 0.0, 0.0}), direction_field(),

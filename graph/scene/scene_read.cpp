@@ -402,6 +402,7 @@ class SceneReader {
     c.aspect = v.number("aspect");
     c.znear = v.number("znear");
     c.zfar = v.optional_number("zfar");
+    c.exposure = v.number("exposure");
     bool ok = true;
     if (const double distance = glm::length(c.look_at - c.position); !(distance >= 1e-9)) {
       error(pointer + "/look_at",
@@ -445,6 +446,7 @@ class SceneReader {
     if (v.declares("range")) l.range = v.optional_number("range");
     if (v.declares("inner_cone")) l.inner_cone_deg = v.number("inner_cone");
     if (v.declares("outer_cone")) l.outer_cone_deg = v.number("outer_cone");
+    if (v.declares("angular_radius")) l.angular_radius_deg = v.number("angular_radius");
     if (v.declares("direction")) {
       auto d = direction(v.vec3("direction"), pointer + "/direction", "direction");
       if (!d) return std::nullopt;
@@ -540,6 +542,7 @@ class SceneReader {
     o.shape = s;
     o.material = v.text("material");
     o.label = v.text("label");
+    if (v.has("emission")) o.emission = v.vec3("emission");
     switch (s) {
       case ShapeType::Sphere:
         o.radius = v.number("radius");

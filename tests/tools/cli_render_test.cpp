@@ -3,6 +3,8 @@
 
 #include <fstream>
 
+#include "graph/cpu/image.h"
+#include "graph/load.h"
 #include "test_support.h"
 
 using namespace lamina;
@@ -51,7 +53,7 @@ TEST_CASE("lamina render refuses a scene it cannot render, with the pointer, and
   const std::vector<Case> cases{
       {scene_with("", kSky), "", "/cameras", "no camera"},
       {scene_with(kCamera, kSky), "--camera mian", "/cameras", "did you mean \"main\""},
-      {scene_with(kCamera, ""), "", "/lights", "no light and no environment"},
+      {scene_with(kCamera, ""), "", "/lights", "no light, no environment and no emitting object"},
       {scene_with(kCamera, std::string(kSky) + ", " + R"({"name": "sky2", "type": "environment"})"), "", "/lights/1",
        "second environment"},
       {scene_with(kCamera, R"({"name": "sky", "type": "environment", "file": "missing.hdr"})"), "", "/lights/0/file",
@@ -74,5 +76,59 @@ TEST_CASE("lamina render refuses a scene it cannot render, with the pointer, and
     auto r = test::run_cli("render scene.json " + args, dir.path());
     CHECK(r.exit_code == 2);
     CHECK(!std::filesystem::exists(dir.path() / "out.png"));
+  }
+}
+
+TEST_CASE("the camera's exposure and --exposure scale the rendered radiance by powers of two") {
+  test::TempDir dir;
+  std::filesystem::copy(test::source_dir() / "tests/data/render/lambert.json", dir.path() / "lambert.json");
+  write_text(dir.path() / "plain.json", scene_with(kCamera, kSky));
+  write_text(dir.path() / "bright.json", scene_with(R"({"name": "main", "position": [0, 0, 4], "exposure": 1})", kSky));
+  for (const auto& [scene, args] :
+       {std::pair{"plain", ""}, std::pair{"bright", ""}, std::pair{"bright", "--exposure -3"}}) {
+    auto r = test::run_cli(std::string("render ") + scene + ".json -o " + scene + (args[0] ? "_less" : "") +
+                               ".exr --width 8 --spp 1 " + args,
+                           dir.path());
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+  }
+  const auto plain = load_image_file(dir.path() / "plain.exr", false);
+  const auto bright = load_image_file(dir.path() / "bright.exr", false);
+  const auto less = load_image_file(dir.path() / "bright_less.exr", false);
+  REQUIRE(plain->texels.size() == bright->texels.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < plain->texels.size(); ++i) {
+    worst = std::max(worst, std::abs(double(bright->texels[i].r) / double(plain->texels[i].r) - 2.0));
+    worst = std::max(worst, std::abs(double(less->texels[i].r) / double(plain->texels[i].r) - 0.25));
+  }
+  CHECK(worst < 2e-3);  // half floats
+}
+
+TEST_CASE("lamina preview shows one material, or several side by side with --compare, and refuses the ambiguous") {
+  test::TempDir dir;
+  std::filesystem::copy(test::source_dir() / "tests/data/render/lambert.json", dir.path() / "lambert.json");
+  auto one = test::run_cli("preview lambert.json --material grey -o grey.png --size 32 --spp 2", dir.path());
+  INFO(one.err);
+  CHECK(one.exit_code == 0);
+  const auto single = load_image_file(dir.path() / "grey.png", true);
+  CHECK(single->width == 32);
+  CHECK(single->height == 32);
+
+  auto all = test::run_cli("preview lambert.json --compare --columns 2 -o all.png --size 32 --spp 1", dir.path());
+  INFO(all.err);
+  CHECK(all.exit_code == 0);
+  // Every material of the file in rows of two, each preview with a label strip under it.
+  const auto sheet = load_image_file(dir.path() / "all.png", true);
+  const Document materials = load(dir.path() / "lambert.json");
+  const int rows = int((materials.materials.size() + 1) / 2);
+  CHECK(sheet->width == 64);
+  CHECK(sheet->height > rows * 32);
+
+  for (const std::string args : {"preview lambert.json -o x.png", "preview lambert.json --material gray -o x.png",
+                                 "preview lambert.json --material grey -o x.png --size 4"}) {
+    CAPTURE(args);
+    auto r = test::run_cli(args, dir.path());
+    CHECK(r.exit_code == 2);
+    CHECK(!std::filesystem::exists(dir.path() / "x.png"));
   }
 }

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 #include <thread>
 
+#include "graph/cpu/frame.h"
 #include "graph/cpu/pcg32.h"
 #include "graph/parallel.h"
 
@@ -23,12 +25,24 @@ float power_heuristic(float pdf_this, float pdf_other) {
 
 float max_component(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
-// How far a secondary ray starts off the surface, along the geometric normal: a few ulps of the
-// hit's coordinates, so that it does not find its own triangle again.
+// The density of a direction drawn uniformly within a cone of half-angle acos(cos_radius).
+float cone_pdf(float cos_radius) { return 1.0f / (2.0f * std::numbers::pi_v<float> * (1.0f - cos_radius)); }
+
+// How far a secondary ray starts off the surface, along the geometric normal: well beyond the
+// rounding of the hit's coordinates, so that it does not find its own triangle again.
 vec3 offset_origin(vec3 position, vec3 geometric_normal, vec3 direction) {
   const float scale =
       1.0e-4f * (1.0f + std::max(std::abs(position.x), std::max(std::abs(position.y), std::abs(position.z))));
   return position + geometric_normal * (glm::dot(direction, geometric_normal) >= 0.0f ? scale : -scale);
+}
+
+// Whether the segment between two surface points is blocked, each end moved off its surface towards
+// the other (offset_origin): a segment between the exact points grazes the surfaces it ends on.
+bool segment_blocked(const RenderScene& scene, vec3 from, vec3 from_normal, vec3 to, vec3 to_normal) {
+  const vec3 a = offset_origin(from, from_normal, to - from), b = offset_origin(to, to_normal, from - to);
+  const vec3 d = b - a;
+  const float length = glm::length(d);
+  return length > 0.0f && scene.occluded(a, d / length, length);
 }
 
 // KHR_lights_punctual's recommended attenuation of a point or spot light at `distance` (the range's
@@ -82,17 +96,24 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
   ++counters.camera;
   for (int depth = 0;; ++depth) {
     const auto hit = scene.intersect(origin, direction, std::numeric_limits<float>::infinity());
-    if (!hit) {
-      if (!environment.present()) break;
-      const vec3 radiance = environment.radiance(direction);
-      if (depth == 0) {
+    // What a ray meets that emits: counted at the camera, and after a bounce as the BRDF-sampling half
+    // of the estimate (its MIS weight against the light sample that could have drawn it).
+    auto add_emitted = [&](vec3 radiance, float light_pdf) {
+      if (depth == 0)
         result.radiance += throughput * radiance;
-      } else if (count_escapes) {
-        const float weight = sample_lights ? power_heuristic(previous_pdf, environment.pdf(direction)) : 1.0f;
-        result.radiance += throughput * radiance * weight;
-      }
+      else if (count_escapes)
+        result.radiance += throughput * radiance * (sample_lights ? power_heuristic(previous_pdf, light_pdf) : 1.0f);
+    };
+    if (!hit) {
+      if (environment.present()) add_emitted(environment.radiance(direction), environment.pdf(direction));
+      for (const PunctualLight& light : scene.lights())
+        if (!light.delta() && -glm::dot(direction, light.direction) >= light.cos_radius)
+          add_emitted(light.radiance, cone_pdf(light.cos_radius));
       break;
     }
+    if (const vec3 emitted = scene.emission(hit->object);
+        max_component(emitted) > 0.0f && glm::dot(hit->geometric_normal, direction) < 0.0f)
+      add_emitted(emitted, scene.emitter_pdf(*hit, direction));
     if (depth >= options.max_depth) break;  // light arriving at this surface was counted; none leaves it
     travelled += hit->distance;
     const vec3 wo = -direction;
@@ -116,8 +137,33 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
       result.albedo = point.albedo(wo, 16);
     }
 
+    // A light sample that is not a delta: its MIS weight against BRDF sampling, which could have drawn
+    // the same direction.
+    // `emitter`: the point drawn on an emitting surface; none for light from infinitely far away.
+    auto add_light_sample = [&](vec3 wi, vec3 radiance, float light_pdf, const EmitterSample* emitter) {
+      if (!(light_pdf > 0.0f) || glm::dot(wi, ng) <= 0.0f) return;
+      const cpu::EvalPdf brdf = point.eval_pdf(wi, wo);
+      if (max_component(brdf.f) <= 0.0f) return;
+      ++counters.shadow;
+      if (emitter ? segment_blocked(scene, hit->position, ng, emitter->position, emitter->normal)
+                  : scene.occluded(offset_origin(hit->position, ng, wi), wi, std::numeric_limits<float>::infinity()))
+        return;
+      const float weight = count_escapes ? power_heuristic(light_pdf, brdf.pdf) : 1.0f;
+      result.radiance += throughput * brdf.f * std::max(glm::dot(n, wi), 0.0f) * radiance * (weight / light_pdf);
+    };
+
     if (sample_lights) {
       for (const PunctualLight& light : scene.lights()) {
+        if (!light.delta()) {  // a disk at infinity: a direction within its cone
+          const vec3 axis = -light.direction;
+          const Frame frame = Frame::from_normal_tangent(axis, vec3(0.0f));
+          const float cos_theta = 1.0f - rng.uniform() * (1.0f - light.cos_radius);
+          const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+          const float phi = 2.0f * std::numbers::pi_v<float> * rng.uniform();
+          const vec3 wi = frame.to_world(vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta));
+          add_light_sample(glm::normalize(wi), light.radiance, cone_pdf(light.cos_radius), nullptr);
+          continue;
+        }
         vec3 wi, incident;
         float distance = std::numeric_limits<float>::infinity();
         if (light.type == LightType::Directional) {
@@ -141,17 +187,12 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
       if (environment.present()) {
         const vec2 u(rng.uniform(), rng.uniform());
         const EnvironmentSample s = environment.sample(u);
-        if (s.pdf > 0.0f && glm::dot(s.wi, ng) > 0.0f) {
-          const cpu::EvalPdf brdf = point.eval_pdf(s.wi, wo);
-          if (max_component(brdf.f) > 0.0f) {
-            ++counters.shadow;
-            if (!scene.occluded(offset_origin(hit->position, ng, s.wi), s.wi, std::numeric_limits<float>::infinity())) {
-              const float weight = count_escapes ? power_heuristic(s.pdf, brdf.pdf) : 1.0f;
-              result.radiance +=
-                  throughput * brdf.f * std::max(glm::dot(n, s.wi), 0.0f) * s.radiance * (weight / s.pdf);
-            }
-          }
-        }
+        add_light_sample(s.wi, s.radiance, s.pdf, nullptr);
+      }
+      if (scene.has_emitters()) {
+        const vec3 u = rng.uniform3();
+        const EmitterSample s = scene.sample_emitter(hit->position, u);
+        add_light_sample(s.wi, s.radiance, s.pdf, &s);
       }
     }
 

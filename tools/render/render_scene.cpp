@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <mutex>
+#include <numbers>
 
 #include "graph/compile.h"
 
@@ -53,6 +54,9 @@ class Device {
 };
 
 namespace {
+
+// Rec. 709 luminance, by which emitters are chosen.
+float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
 glm::dmat4 object_to_world(const Transform& t) {
   return glm::translate(glm::dmat4(1.0), t.translation) * glm::mat4_cast(t.rotation) *
@@ -125,9 +129,11 @@ const Camera* check_renderable(const Scene& scene, const std::string& camera_nam
     if (l.intensity == 0.0 || glm::dvec3(l.color) == glm::dvec3(0.0))
       diagnostics.warning(scene.path, pointer + "/intensity", "light " + quote_excerpt(l.name) + " emits nothing");
   }
-  if (scene.lights.empty())
+  const bool emits = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                 [](const SceneObject& o) { return o.emission != glm::dvec3(0.0); });
+  if (scene.lights.empty() && !emits)
     diagnostics.error(scene.path, "/lights",
-                      "the scene has no light and no environment: every image of it would be black",
+                      "the scene has no light, no environment and no emitting object: every image of it would be black",
                       "add a light, or an environment: {\"name\": \"sky\", \"type\": \"environment\"} is a "
                       "uniform white sky");
   return diagnostics.ok() ? camera : nullptr;
@@ -173,6 +179,40 @@ RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy) : device
       materials_.push_back(std::make_unique<cpu::Evaluator>(compile(file->document, object.material)));
     }
     object_material_.push_back(material->second);
+
+    emission_.push_back(glm::vec3(object.emission));
+    if (object.emission != glm::dvec3(0.0)) {
+      const TriangleMesh& mesh = meshes_[size_t(instance.mesh)].mesh;
+      double power = 0.0;
+      for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        auto world = [&](size_t k) {
+          return glm::vec3(instance.to_world * glm::vec4(mesh.positions[mesh.indices[t + k]], 1.0f));
+        };
+        EmitterTriangle e;
+        e.p0 = world(0);
+        e.edge1 = world(1) - e.p0;
+        e.edge2 = world(2) - e.p0;
+        const glm::vec3 cross = glm::cross(e.edge1, e.edge2);
+        const double area = 0.5 * double(glm::length(cross));
+        if (!(area > 0.0)) continue;
+        e.normal = glm::normalize(cross) * (instance.mirrored ? -1.0f : 1.0f);
+        e.object = int(i);
+        power += area * double(luminance(glm::vec3(object.emission)));
+        emitters_.push_back(e);
+        emitter_cdf_.push_back(emitter_power_ + power);
+      }
+      if (!(power > 0.0))
+        throw Error({Diagnostic{Severity::Error, scene.path, "/objects/" + std::to_string(i) + "/emission",
+                                "object " + quote_excerpt(object.name) +
+                                    " emits light but has no area to emit it from (its triangles are degenerate)",
+                                "give it a mesh with area, or remove its emission"}});
+      emitter_power_ += power;
+    }
+  }
+  if (emitter_power_ > 0.0) {
+    emitter_cdf_.insert(emitter_cdf_.begin(), 0.0);
+    for (double& c : emitter_cdf_) c /= emitter_power_;
+    emitter_cdf_.back() = 1.0;
   }
   rtcCommitScene(top_);
   device_->check("building the scene's hierarchy");
@@ -192,6 +232,11 @@ RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy) : device
     p.cos_outer = float(std::cos(glm::radians(l.outer_cone_deg)));
     p.cos_inner = float(std::cos(glm::radians(l.inner_cone_deg)));
     p.range = l.range ? float(*l.range) : 0.0f;
+    if (l.type == LightType::Directional && l.angular_radius_deg > 0.0) {
+      const double radius = glm::radians(l.angular_radius_deg);
+      p.cos_radius = float(std::cos(radius));
+      p.radiance = scaled / float(std::numbers::pi * std::sin(radius) * std::sin(radius));
+    }
     lights_.push_back(p);
   }
 }
@@ -238,6 +283,36 @@ std::optional<SurfaceHit> RenderScene::intersect(glm::vec3 origin, glm::vec3 dir
   const float twice_uv_area = std::abs(e1.x * e2.y - e1.y * e2.x);
   hit.uv_per_length = twice_area > 0.0f ? std::sqrt(twice_uv_area / twice_area) : 0.0f;
   return hit;
+}
+
+EmitterSample RenderScene::sample_emitter(glm::vec3 from, glm::vec3 u) const {
+  EmitterSample s;
+  if (emitters_.empty()) return s;
+  const auto it = std::upper_bound(emitter_cdf_.begin() + 1, emitter_cdf_.end(), double(u.x));
+  const size_t k = std::min(size_t(it - emitter_cdf_.begin()) - 1, emitters_.size() - 1);
+  const EmitterTriangle& e = emitters_[k];
+  // A uniform point on the triangle (the square root warp of Shirley and Chiu).
+  const float r = std::sqrt(u.y);
+  const glm::vec3 q = e.p0 + e.edge1 * (r * (1.0f - u.z)) + e.edge2 * (r * u.z);
+  const glm::vec3 d = q - from;
+  s.distance = glm::length(d);
+  if (!(s.distance > 0.0f)) return {};
+  s.wi = d / s.distance;
+  s.position = q;
+  s.normal = e.normal;
+  const float cos_light = -glm::dot(e.normal, s.wi);
+  if (!(cos_light > 0.0f)) return {};  // its back face: it emits from the front only
+  s.radiance = emission_[size_t(e.object)];
+  const float pdf_area = luminance(s.radiance) / float(emitter_power_);
+  s.pdf = pdf_area * s.distance * s.distance / cos_light;
+  return s;
+}
+
+float RenderScene::emitter_pdf(const SurfaceHit& hit, glm::vec3 direction) const {
+  const glm::vec3 emitted = emission_[size_t(hit.object)];
+  const float cos_light = -glm::dot(hit.geometric_normal, direction);
+  if (emitter_power_ <= 0.0 || !(cos_light > 0.0f)) return 0.0f;
+  return luminance(emitted) / float(emitter_power_) * hit.distance * hit.distance / cos_light;
 }
 
 bool RenderScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_max) const {

@@ -39,6 +39,21 @@ struct PunctualLight {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};     // where the light travels (unit)
   float cos_outer = -1.0f, cos_inner = 1.0f;  // spot cone
   float range = 0.0f;                         // 0: infinite
+  // Directional lights with an angular radius: a uniform disk of `radiance` seen within cos_radius of
+  // -direction, whose illuminance at normal incidence is `intensity` (E = pi L sin^2 radius).
+  float cos_radius = 1.0f;  // 1: a point at infinity
+  glm::vec3 radiance{0.0f};
+  bool delta() const { return type != LightType::Directional || cos_radius >= 1.0f; }
+};
+
+// A point drawn on the scene's emitting surfaces, towards a shading point.
+struct EmitterSample {
+  glm::vec3 wi{0.0f};  // unit, from the shading point towards the emitter
+  float distance = 0.0f;
+  glm::vec3 position{0.0f};  // the point drawn on the emitter, and its front face's normal
+  glm::vec3 normal{0.0f};
+  glm::vec3 radiance{0.0f};  // what the emitter sends back along -wi
+  float pdf = 0.0f;          // solid-angle density at the shading point; 0: nothing drawn
 };
 
 class Device;
@@ -66,7 +81,18 @@ class RenderScene {
 
   const cpu::Evaluator& material(int object) const { return *materials_[size_t(object_material_[size_t(object)])]; }
   const std::vector<PunctualLight>& lights() const { return lights_; }
+  // The radiance an object emits from its front faces (0 for most).
+  glm::vec3 emission(int object) const { return emission_[size_t(object)]; }
+  bool has_emitters() const { return emitter_power_ > 0.0; }
+  // A point on the emitting triangles, drawn in proportion to their area times their emission's
+  // luminance, seen from `from`; u: three uniform numbers.
+  EmitterSample sample_emitter(glm::vec3 from, glm::vec3 u) const;
+  // The solid-angle density sample_emitter gives a ray from a point that meets the emitting `hit`
+  // (its front face) at `distance`, arriving along `direction` (unit).
+  float emitter_pdf(const SurfaceHit& hit, glm::vec3 direction) const;
   const Environment& environment() const { return environment_; }
+  // Lights the scene with `environment` instead of the scene's own (a preview's studio).
+  void set_environment(Environment environment) { environment_ = std::move(environment); }
   // The scene's bounding sphere radius about the origin (for offsets and far planes).
   float extent() const { return extent_; }
 
@@ -90,6 +116,14 @@ class RenderScene {
   std::vector<int> object_material_;
   std::vector<PunctualLight> lights_;
   Environment environment_;
+  struct EmitterTriangle {
+    glm::vec3 p0, edge1, edge2, normal;  // world space; normal: unit, the front face's
+    int object = 0;
+  };
+  std::vector<glm::vec3> emission_;  // per object
+  std::vector<EmitterTriangle> emitters_;
+  std::vector<double> emitter_cdf_;  // emitters_.size() + 1, from 0 to 1
+  double emitter_power_ = 0.0;       // sum of area times emission luminance
   float extent_ = 1.0f;
 };
 

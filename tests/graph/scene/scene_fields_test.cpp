@@ -65,6 +65,7 @@ TEST_CASE("what a scene file leaves out reads as the initialisers of the scene s
   CHECK(s.cameras[0].aspect == camera.aspect);
   CHECK(s.cameras[0].znear == camera.znear);
   CHECK(s.cameras[0].zfar == camera.zfar);
+  CHECK(s.cameras[0].exposure == camera.exposure);
 
   REQUIRE(s.lights.size() == 4);
   const Light light;
@@ -77,6 +78,7 @@ TEST_CASE("what a scene file leaves out reads as the initialisers of the scene s
     CHECK(l.inner_cone_deg == light.inner_cone_deg);
     CHECK(l.outer_cone_deg == light.outer_cone_deg);
     CHECK(l.range == light.range);
+    CHECK(l.angular_radius_deg == light.angular_radius_deg);
   }
 
   REQUIRE(s.objects.size() == 4);
@@ -90,6 +92,7 @@ TEST_CASE("what a scene file leaves out reads as the initialisers of the scene s
     CHECK(o.major_radius == object.major_radius);
     CHECK(o.minor_radius == object.minor_radius);
     CHECK(o.label == object.label);
+    CHECK(o.emission == object.emission);
     CHECK(o.transform.translation == object.transform.translation);
     CHECK(o.transform.rotation == object.transform.rotation);
     CHECK(o.transform.scale == object.transform.scale);

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "graph/cpu/pcg32.h"
@@ -95,45 +96,86 @@ TEST_CASE("a white Lambertian sphere under a uniform sky shows the sky's radianc
   }
 }
 
-TEST_CASE("a Lambertian plane under a point light and under a directional light shows rho E cos / pi") {
-  // Looking straight down at a grey (0.5) plane 2 units below the camera; the light 3 units above it.
-  const std::string common =
-      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "down", "position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "yfov": 60, "aspect": 1}], "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "grey"}], "lights": [)";
+// The irradiance at floor point p (the plane y = 0, normal +y) from the light of a test case.
+using Irradiance = std::function<double(glm::dvec3 p)>;
+
+// Renders the grey (0.5) plane from 2 units above, looking straight down, under `lights` (and the
+// objects `more`), by `estimator`, and compares each pixel with rho E / pi averaged over 4 x 4 points
+// across it: the worst relative error of a pixel, and that of the image's mean.
+struct PlaneError {
+  double worst = 0.0, mean = 0.0;
+};
+PlaneError plane_error(const std::string& lights, const std::string& more, const Irradiance& irradiance,
+                       render::Estimator estimator, int samples) {
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "down", "position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "yfov": 60, "aspect": 1}], "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "grey"})" +
+      more + R"(], "lights": [)" + lights + "]}");
+  const render::RenderScene prepared(scene, test::repository_policy());
   const int size = 16;
-  for (const bool point : {true, false}) {
-    const Scene scene = render_scene_text(
-        common + (point ? R"({"name": "bulb", "type": "point", "position": [0.5, 3, 0], "intensity": 90}]})"
-                        : R"({"name": "sun", "type": "directional", "direction": [1, -2, 0.5], "intensity": 4}]})"));
-    const render::RenderScene prepared(scene, test::repository_policy());
-    render::RenderOptions options;
-    options.width = options.height = size;
-    options.samples = 64;
-    const auto image = render::render(prepared, scene.cameras[0], options);
-    double worst = 0.0;
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        // The pixel's mean over its area: the closed form at 4 x 4 points across it.
-        double expected = 0.0;
-        for (int s = 0; s < 16; ++s) {
-          const auto ray = render::camera_ray(
-              scene.cameras[0], size, size,
-              glm::vec2(float(x) + (float(s % 4) + 0.5f) / 4.0f, float(y) + (float(s / 4) + 0.5f) / 4.0f));
-          const glm::dvec3 p = glm::dvec3(ray.origin) + glm::dvec3(ray.direction) * (2.0 / -double(ray.direction.y));
-          double irradiance;
-          if (point) {
-            const glm::dvec3 d = glm::dvec3(0.5, 3.0, 0.0) - p;
-            const double r = glm::length(d);
-            irradiance = 90.0 * (d.y / r) / (r * r);
-          } else {
-            irradiance = 4.0 * glm::normalize(glm::dvec3(-1.0, 2.0, -0.5)).y;
-          }
-          expected += 0.5 * irradiance / std::numbers::pi / 16.0;
-        }
-        const double found = average(image.radiance[size_t(y * size + x)]);
-        worst = std::max(worst, std::abs(found / expected - 1.0));
+  render::RenderOptions options;
+  options.width = options.height = size;
+  options.samples = samples;
+  options.estimator = estimator;
+  options.max_depth = 1;  // direct light only: the closed forms know nothing of interreflection
+  const auto image = render::render(prepared, scene.cameras[0], options);
+  PlaneError error;
+  double found_sum = 0.0, expected_sum = 0.0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      double expected = 0.0;
+      for (int s = 0; s < 16; ++s) {
+        const auto ray = render::camera_ray(
+            scene.cameras[0], size, size,
+            glm::vec2(float(x) + (float(s % 4) + 0.5f) / 4.0f, float(y) + (float(s / 4) + 0.5f) / 4.0f));
+        const glm::dvec3 p = glm::dvec3(ray.origin) + glm::dvec3(ray.direction) * (2.0 / -double(ray.direction.y));
+        expected += 0.5 * irradiance(p) / std::numbers::pi / 16.0;
       }
-    INFO((point ? "point" : "directional") << " light: worst relative error " << worst);
-    CHECK(worst < 0.02);  // the jittered samples against a 4 x 4 grid over each pixel
+      const double found = average(image.radiance[size_t(y * size + x)]);
+      error.worst = std::max(error.worst, std::abs(found / expected - 1.0));
+      found_sum += found;
+      expected_sum += expected;
+    }
+  error.mean = std::abs(found_sum / expected_sum - 1.0);
+  return error;
+}
+
+// A uniform spherical cap of radiance L seen within angle a, entirely above a surface, gives it
+// E = pi L sin^2(a) cos(theta) (theta: between the cap's centre and the normal), exactly.
+TEST_CASE("a Lambertian plane under a point, a directional, a disk and a spherical light shows rho E cos / pi") {
+  const glm::dvec3 bulb(0.5, 3.0, 0.0);
+  const Irradiance point = [&](glm::dvec3 p) {
+    const glm::dvec3 d = bulb - p;
+    const double r = glm::length(d);
+    return 90.0 * (d.y / r) / (r * r);
+  };
+  const Irradiance directional = [](glm::dvec3) { return 4.0 * glm::normalize(glm::dvec3(-1.0, 2.0, -0.5)).y; };
+  // The lamp: radius 0.25 at (0.5, 2.6, 0.3), behind the camera, emitting 40 (pi L sin^2 a = pi L r^2 / d^2).
+  const glm::dvec3 ball(0.5, 2.6, 0.3);
+  const Irradiance sphere = [&](glm::dvec3 p) {
+    const glm::dvec3 d = ball - p;
+    const double r = glm::length(d);
+    return std::numbers::pi * 40.0 * 0.0625 / (r * r) * (d.y / r);
+  };
+  const std::string bulb_light = R"({"name": "bulb", "type": "point", "position": [0.5, 3, 0], "intensity": 90})";
+  const std::string sun = R"({"name": "sun", "type": "directional", "direction": [1, -2, 0.5], "intensity": 4)";
+  const std::string ball_object =
+      R"(, {"name": "lamp", "shape": "sphere", "radius": 0.25, "segments": 256, "material": "black", "emission": [40, 40, 40], "transform": {"translation": [0.5, 2.6, 0.3]}})";
+  CHECK(plane_error(bulb_light, "", point, render::Estimator::Mis, 64).worst < 0.02);
+  CHECK(plane_error(sun + "}", "", directional, render::Estimator::Mis, 64).worst < 0.02);
+  // A sun of 5 degrees and a lamp: every estimator finds them (light samples on them, BRDF samples
+  // that escape into the sun's disk or meet the lamp). Where a pixel's estimate stays noisy (BRDF
+  // sampling finds both rarely; light samples land on the lamp's far side half the time and near its
+  // outline often), the image's mean is compared instead of every pixel.
+  for (auto estimator : {render::Estimator::Mis, render::Estimator::LightSampling, render::Estimator::BrdfSampling}) {
+    CAPTURE(int(estimator));
+    const bool rare = estimator == render::Estimator::BrdfSampling;
+    const PlaneError disk =
+        plane_error(sun + R"(, "angular_radius": 5})", "", directional, estimator, rare ? 2048 : 64);
+    const PlaneError lamp = plane_error("", ball_object, sphere, estimator, rare ? 2048 : 256);
+    INFO("disk: worst pixel " << disk.worst << ", mean " << disk.mean << "; lamp: worst pixel " << lamp.worst
+                              << ", mean " << lamp.mean);
+    CHECK((rare ? disk.mean < 0.05 : disk.worst < 0.03));
+    CHECK(lamp.mean < (rare ? 0.05 : 0.02));
   }
 }
 
