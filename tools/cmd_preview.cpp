@@ -18,6 +18,8 @@ namespace lamina::cli {
 
 namespace {
 
+constexpr int64_t kMaxSheetSide = 16384;
+
 struct PreviewOptions {
   std::vector<std::string> inputs;
   std::string output;
@@ -110,6 +112,9 @@ int run_preview(const PreviewOptions& o) {
   const int columns = o.compare ? std::min(count, std::max(1, o.columns)) : 1;
   const int rows = (count + columns - 1) / columns;
   const int label = o.compare ? std::max(14, o.size / 9) : 0;
+  if (int64_t(columns) * o.size > kMaxSheetSide || int64_t(rows) * (o.size + label) > kMaxSheetSide)
+    return refuse("the sheet of " + std::to_string(count) + " previews of " + std::to_string(o.size) +
+                  " pixels would be more than 16384 pixels a side: lower --size or change --columns");
   plot::Canvas canvas(columns * o.size, rows * (o.size + label), glm::vec3(0.12f));
   plot::Text text(canvas, fonts);
   Progress progress;
