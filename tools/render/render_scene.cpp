@@ -291,7 +291,8 @@ EmitterSample RenderScene::sample_emitter(glm::vec3 from, glm::vec3 u) const {
   const auto it = std::upper_bound(emitter_cdf_.begin() + 1, emitter_cdf_.end(), double(u.x));
   const size_t k = std::min(size_t(it - emitter_cdf_.begin()) - 1, emitters_.size() - 1);
   const EmitterTriangle& e = emitters_[k];
-  // A uniform point on the triangle (the square root warp of Shirley and Chiu).
+  // A uniform point on the triangle: the square-root warp of Turk, "Generating Random Points in
+  // Triangles" (Graphics Gems, 1990).
   const float r = std::sqrt(u.y);
   const glm::vec3 q = e.p0 + e.edge1 * (r * (1.0f - u.z)) + e.edge2 * (r * u.z);
   const glm::vec3 d = q - from;
