@@ -278,6 +278,36 @@ TEST_CASE(
   CHECK(light_sampled > 0);
 }
 
+TEST_CASE("a glTF mesh file renders as its triangles, mirrored or not, under its node transforms") {
+  // tests/data/scenes/quad.gltf: a 2 x 2 quad centred on x = 1 (its node's scale and translation);
+  // quad_mirrored.gltf: a 1 x 1 quad at the origin, mirrored by a negative scale. Seen head on from
+  // 1.5 times its width under a uniform sky, each shows rho times the sky in the middle of the image
+  // (cosine sampling of a Lambertian surface that sees the whole sky is exact) and the sky around it.
+  struct Quad {
+    const char* file;
+    double centre_x, width;
+  };
+  for (const Quad& quad : {Quad{"quad.gltf", 1.0, 2.0}, Quad{"quad_mirrored.gltf", 0.0, 1.0}}) {
+    CAPTURE(quad.file);
+    const std::string x = std::to_string(quad.centre_x), z = std::to_string(1.5 * quad.width);
+    const Scene scene = render_scene_text(
+        R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "c", "position": [)" + x + ", 0, " + z +
+        R"(], "look_at": [)" + x +
+        R"(, 0, 0], "yfov": 60, "aspect": 1}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "quad", "shape": "mesh", "file": "../scenes/)" +
+        quad.file + R"(", "material": "grey"}]})");
+    const render::RenderScene prepared(scene, test::repository_policy());
+    render::RenderOptions options;
+    options.width = options.height = 16;
+    options.samples = 4;
+    options.estimator = render::Estimator::BrdfSampling;
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    // The image's half-height is tan(30 deg) 1.5 = 0.87 widths: the quad covers its middle 58%.
+    for (const size_t pixel : {8 * 16 + 8, 5 * 16 + 10, 10 * 16 + 6})
+      CHECK(average(image.radiance[pixel]) == doctest::Approx(0.5).epsilon(1e-3));
+    CHECK(average(image.radiance[0]) == doctest::Approx(1.0).epsilon(1e-6));
+  }
+}
+
 TEST_CASE("the same seed gives the same image bit for bit whatever the thread count, and another seed another") {
   const Scene scene = render_scene_text(
       R"({"format": 1, "materials": ["lambert.json", "../../../examples/materials/aventurine_glass.json"], "cameras": [{"name": "c", "position": [0, 1.5, 4], "look_at": [0, 0.5, 0]}], "lights": [{"name": "sky", "type": "environment", "file": "sky.png"}, {"name": "bulb", "type": "point", "position": [2, 3, 2], "intensity": 20}], "objects": [{"name": "ball", "shape": "sphere", "material": "aventurine_glass", "transform": {"translation": [0, 1, 0]}}, {"name": "floor", "shape": "plane", "size": [6, 6], "material": "grey"}]})");
