@@ -121,9 +121,7 @@ void add_gltf(CLI::App& app, Runner& runner) {
                   "beyond, the texels between interpolated (fewer: a faster export, a coarser fallback)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
+  add_sheet_columns_option(*cmd, o->columns);
   cmd->callback([o, &runner] { runner = [o] { return run_gltf(*o); }; });
 }
 

@@ -178,9 +178,7 @@ void add_render(CLI::App& app, Runner& runner) {
       ->capture_default_str();
   cmd->add_flag("--aovs", o->aovs, "also write the first hit's albedo and normal as EXR layers, for denoisers");
   cmd->add_flag("--stats", o->stats, "print the time, samples and rays per second");
-  cmd->add_option("--columns", o->columns, "spheres per row of a material file's sample sheet")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
+  add_sheet_columns_option(*cmd, o->columns);
   add_input_options(*cmd, o->input_options);
   cmd->footer(
       "Lights keep KHR_lights_punctual's units (candela for point and spot lights, lux for directional ones) and "

@@ -65,6 +65,9 @@ Inputs expand_inputs(const std::vector<std::string>& inputs);
 int for_each_checked_file(const std::vector<std::string>& inputs, const InputOptions& options,
                           const std::function<bool(const std::filesystem::path&, CheckedFile&)>& visit);
 
+// Adds --columns: spheres per row of a material file's sample sheet (1 to 64).
+void add_sheet_columns_option(CLI::App& cmd, int& columns);
+
 // Reads `input`: a scene file, or a material file as its sample sheet (one sphere per material in
 // rows of `columns`, graph/scene/scene.h). Problems go to `diagnostics`, unprinted; an input that
 // cannot be read is printed and returns kExitIo. Otherwise kExitOk, whatever the diagnostics say.

@@ -72,6 +72,12 @@ Inputs expand_inputs(const std::vector<std::string>& inputs) {
   return out;
 }
 
+void add_sheet_columns_option(CLI::App& cmd, int& columns) {
+  cmd.add_option("--columns", columns, "spheres per row of a material file's sample sheet")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+}
+
 int read_scene_input(const std::string& input, const InputOptions& options, int columns, Scene& scene,
                      Diagnostics& diagnostics) {
   try {

@@ -10,9 +10,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-// Rec. 709 luminance: positive weights, so it is 0 only where every channel is.
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 // The first index i in [0, n) with cdf[i + 1] > x, for a non-decreasing cdf of n + 1 values from 0
 // to 1 (x in [0, 1)): that of a zero-width interval is never returned.
 int find_interval(const float* cdf, int n, float x) {

@@ -11,6 +11,10 @@
 
 namespace lamina::render {
 
+// Rec. 709 luminance, by which environment texels and emitters are chosen: positive weights, so it
+// is 0 only where every channel is.
+inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 // Where a world direction lands in an equirectangular image: u = 0.5 + atan2(z, x) / 2 pi (the
 // image's centre column looks along +x, as three.js maps one), v = acos(y) / pi (row 0 is straight up,
 // +y), and the inverse.

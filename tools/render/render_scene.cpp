@@ -55,9 +55,6 @@ class Device {
 
 namespace {
 
-// Rec. 709 luminance, by which emitters are chosen.
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 glm::dmat4 object_to_world(const Transform& t) {
   return glm::translate(glm::dmat4(1.0), t.translation) * glm::mat4_cast(t.rotation) *
          glm::scale(glm::dmat4(1.0), t.scale);
