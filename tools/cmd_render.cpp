@@ -20,6 +20,7 @@ constexpr int kMaxRenderSide = 16384;
 constexpr int kMaxRenderSamples = 1 << 20;
 constexpr int kMaxRenderDepth = 1024;
 constexpr double kMaxRenderExposure = 64.0;
+constexpr double kMaxRenderTime = 7.0 * 24.0 * 3600.0;  // a week
 
 struct RenderCliOptions {
   std::string input;
@@ -28,6 +29,8 @@ struct RenderCliOptions {
   int width = 480;
   int height = 0;  // from the camera's aspect
   int samples = 16;
+  bool samples_given = false;
+  double time = 0.0;
   uint64_t seed = 0;
   int threads = 0;
   int max_depth = 8;
@@ -48,6 +51,7 @@ int run_render(const RenderCliOptions& o) {
   if (o.width < 1 || o.width > kMaxRenderSide) return refuse("--width: expected 1 to 16384 pixels");
   if (o.height < 0 || o.height > kMaxRenderSide) return refuse("--height: expected 1 to 16384 pixels, or 0");
   if (o.samples < 1 || o.samples > kMaxRenderSamples) return refuse("--spp: expected 1 to 1048576 samples per pixel");
+  if (!(o.time >= 0.0 && o.time <= kMaxRenderTime)) return refuse("--time: expected 0 (none) to 604800 seconds");
   if (o.max_depth < 1 || o.max_depth > kMaxRenderDepth) return refuse("--max-depth: expected 1 to 1024 surfaces");
   if (o.threads < 0 || o.threads > 1024) return refuse("--threads: expected 0 (one per core) to 1024");
   if (!(std::abs(o.exposure) <= kMaxRenderExposure)) return refuse("--exposure: expected -64 to 64 stops");
@@ -74,7 +78,8 @@ int run_render(const RenderCliOptions& o) {
   options.width = o.width;
   options.height = o.height > 0 ? o.height : std::max(1, int(std::lround(double(o.width) / camera->aspect)));
   if (options.height > kMaxRenderSide) return refuse("the camera's aspect makes the image taller than 16384 pixels");
-  options.samples = o.samples;
+  options.samples = o.time > 0.0 && !o.samples_given ? kMaxRenderSamples : o.samples;
+  options.time_budget = o.time;
   options.seed = o.seed;
   options.threads = o.threads;
   options.max_depth = o.max_depth;
@@ -88,7 +93,9 @@ int run_render(const RenderCliOptions& o) {
   render::RenderResult image;
   const auto start = std::chrono::steady_clock::now();
   try {
-    const render::RenderScene prepared(scene, o.input_options.policy_for(o.input));
+    Diagnostics warnings;
+    const render::RenderScene prepared(scene, o.input_options.policy_for(o.input), &warnings);
+    print_diagnostics(warnings);
     image = render::render(prepared, *camera, options);
   } catch (const IoError& e) {
     print_problem(e.what());
@@ -118,7 +125,7 @@ int run_render(const RenderCliOptions& o) {
   }
   const FloatPixels view{data.data(), image.width, image.height, channels};
   const std::string description = "lamina render of " + std::filesystem::path(o.input).filename().string() + ", " +
-                                  std::to_string(o.samples) + " spp, seed " + std::to_string(o.seed);
+                                  std::to_string(image.samples) + " spp, seed " + std::to_string(o.seed);
   std::vector<unsigned char> encoded;
   std::string why;
   if (exr) {
@@ -134,11 +141,12 @@ int run_render(const RenderCliOptions& o) {
     return kExitIo;
   }
   if (int code = write_outputs({{o.output, std::string(encoded.begin(), encoded.end())}}); code != kExitOk) return code;
+  if (o.time > 0.0 && !o.stats) std::printf("%d samples per pixel in %.2f s\n", image.samples, seconds);
   if (o.stats) {
-    const double paths = double(pixels) * double(o.samples);
+    const double paths = double(pixels) * double(image.samples);
     const double rays = double(image.camera_rays + image.shadow_rays + image.bounce_rays);
     std::printf("%d x %d, %d spp in %.2f s: %.3g samples/s, %.3g rays/s (camera %llu, bounce %llu, shadow %llu)\n",
-                image.width, image.height, o.samples, seconds, paths / seconds, rays / seconds,
+                image.width, image.height, image.samples, seconds, paths / seconds, rays / seconds,
                 static_cast<unsigned long long>(image.camera_rays), static_cast<unsigned long long>(image.bounce_rays),
                 static_cast<unsigned long long>(image.shadow_rays));
   }
@@ -159,7 +167,13 @@ void add_render(CLI::App& app, Runner& runner) {
   cmd->add_option("--camera", o->camera, "the scene camera to render from; default: the first");
   cmd->add_option("--width", o->width, "image width in pixels")->capture_default_str();
   cmd->add_option("--height", o->height, "image height in pixels; 0: from the camera's aspect")->capture_default_str();
-  cmd->add_option("--spp", o->samples, "samples per pixel")->capture_default_str();
+  cmd->add_option("--spp", o->samples, "samples per pixel; with --time, the most it may take (default: no limit)")
+      ->capture_default_str();
+  cmd->add_option("--time", o->time,
+                  "seconds of path tracing: passes of samples until the next would not fit (at least one sample). "
+                  "An image of N samples equals --spp N bit for bit; N is printed and written in the image's "
+                  "description")
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "the random sequence: the same seed gives the same image, whatever --threads")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads; 0: one per core")->capture_default_str();
@@ -184,7 +198,10 @@ void add_render(CLI::App& app, Runner& runner) {
       "Lights keep KHR_lights_punctual's units (candela for point and spot lights, lux for directional ones) and "
       "the image holds radiance in the matching units: a white Lambertian surface facing a 1 lux light shows 1/pi. "
       "Nothing is written for an invalid scene; the image is complete or absent.");
-  cmd->callback([o, &runner] { runner = [o] { return run_render(*o); }; });
+  cmd->callback([o, cmd, &runner] {
+    o->samples_given = cmd->count("--spp") > 0;
+    runner = [o] { return run_render(*o); };
+  });
 }
 
 }  // namespace lamina::cli

@@ -107,7 +107,12 @@ class Writer {
     Export result;
     const bool binary = output.extension() == ".glb";
     Json scene_nodes = Json::array();
-    for (const auto& camera : scene_.cameras) scene_nodes.push_back(add_camera(camera));
+    for (const auto& camera : scene_.cameras) {
+      if (camera.aperture_radius > 0.0)
+        result.notes.push_back("camera '" + camera.name +
+                               "' is written as a pinhole: glTF 2.0 cameras have no aperture or focus distance");
+      scene_nodes.push_back(add_camera(camera));
+    }
     for (const auto& light : scene_.lights) {
       if (light.type == LightType::Environment) {
         result.notes.push_back("environment light '" + light.name +

@@ -32,6 +32,12 @@ struct Camera {
   double znear = 0.05;
   std::optional<double> zfar;  // none: infinite projection
   double exposure = 0.0;       // stops: lamina render multiplies the image's radiance by 2^exposure
+  // A thin lens (lamina render only): the lens's radius, 0 for a pinhole, and the distance along the
+  // view direction of the plane in focus (none: the distance to look_at).
+  double aperture_radius = 0.0;
+  std::optional<double> focus_distance;
+  // The plane in focus: focus_distance, or the distance to look_at.
+  double focus() const { return focus_distance ? *focus_distance : glm::length(look_at - position); }
 };
 
 enum class LightType { Point, Directional, Spot, Environment };

@@ -111,6 +111,17 @@ const std::vector<ParamDecl>& camera_fields() {
             "stops: lamina render multiplies the image's radiance by 2^exposure (and --exposure adds to it)")
           .range(-64.0, 64.0)
           .or_default(0.0),
+      field("aperture_radius", ValueType::Float,
+            "the radius of a thin lens [scene units]: points off the plane in focus blur into disks, as a real "
+            "lens shows them (depth of field); 0: a pinhole, everything sharp. lamina render only; glTF has no "
+            "counterpart")
+          .at_least(0.0)
+          .at_most(1e6)
+          .or_default(0.0),
+      positive("focus_distance",
+               "distance from the camera to the plane in focus, along the view direction [scene units]; none: the "
+               "distance to look_at")
+          .optional(),
   };
   return fields;
 }

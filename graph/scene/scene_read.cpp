@@ -403,6 +403,8 @@ class SceneReader {
     c.znear = v.number("znear");
     c.zfar = v.optional_number("zfar");
     c.exposure = v.number("exposure");
+    c.aperture_radius = v.number("aperture_radius");
+    c.focus_distance = v.optional_number("focus_distance");
     bool ok = true;
     if (const double distance = glm::length(c.look_at - c.position); !(distance >= 1e-9)) {
       error(pointer + "/look_at",

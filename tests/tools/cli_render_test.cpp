@@ -38,6 +38,13 @@ TEST_CASE("lamina render writes a PNG of a scene and an EXR with albedo and norm
   const std::string bytes = test::read_file(dir.path() / "ball.exr");
   CHECK(bytes.rfind("\x76\x2f\x31\x01", 0) == 0);  // OpenEXR's magic number
   for (const char* channel : {"albedo.R", "N.Z"}) CHECK(bytes.find(channel) != std::string::npos);
+  // A time budget: as many samples as fit, at least one, said on standard output and in the image.
+  auto timed = test::run_cli("render scene.json -o timed.exr --width 32 --time 0.5", dir.path());
+  INFO(timed.err);
+  CHECK(timed.exit_code == 0);
+  CHECK(timed.out.find(" samples per pixel in ") != std::string::npos);
+  const std::string samples = timed.out.substr(0, timed.out.find(' '));
+  CHECK(test::read_file(dir.path() / "timed.exr").find(samples + " spp") != std::string::npos);
   // A material file renders as its sample sheet.
   auto sheet = test::run_cli("render lambert.json -o sheet.png --width 32 --spp 1", dir.path());
   INFO(sheet.err);
@@ -71,7 +78,7 @@ TEST_CASE("lamina render refuses a scene it cannot render, with the pointer, and
   }
   write_text(dir.path() / "scene.json", scene_with(kCamera, kSky));
   for (const std::string args : {"-o out.png --spp 0", "-o out.png --width 0", "-o out.txt", "-o out.png --aovs",
-                                 "-o out.png --estimator nee"}) {
+                                 "-o out.png --estimator nee", "-o out.png --time -1"}) {
     CAPTURE(args);
     auto r = test::run_cli("render scene.json " + args, dir.path());
     CHECK(r.exit_code == 2);

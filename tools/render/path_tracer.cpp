@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <thread>
@@ -69,6 +70,19 @@ float uv_footprint(float cone_width, float cos_view, float uv_per_length) {
   return cone_width / std::max(std::abs(cos_view), 0.05f) * uv_per_length;
 }
 
+// Near the silhouette of a coarse mesh the interpolated normal can face away from a viewer who sees the
+// triangle's front: the material, seen from below its horizon, would be black there. Such a normal is
+// turned towards the viewer, in the plane of the two, until it sees them at kLeastShadingCos.
+constexpr float kLeastShadingCos = 0.01f;
+vec3 facing_normal(vec3 n, vec3 wo) {
+  const float c = glm::dot(n, wo);
+  if (c >= kLeastShadingCos) return n;
+  const vec3 across = n - c * wo;  // n's part orthogonal to wo; not 0: wo sees the triangle's front
+  const float length = glm::length(across);
+  if (!(length > 0.0f)) return wo;
+  return kLeastShadingCos * wo + std::sqrt(1.0f - kLeastShadingCos * kLeastShadingCos) * (across / length);
+}
+
 struct Counters {
   uint64_t camera = 0, shadow = 0, bounce = 0;
 };
@@ -123,6 +137,7 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
       ng = -ng;
       n = -n;
     }
+    n = facing_normal(n, wo);
     ShadingContext ctx;
     ctx.uv = hit->uv;
     ctx.position = hit->position;
@@ -217,7 +232,7 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
 
 }  // namespace
 
-CameraRay camera_ray(const Camera& camera, int width, int height, vec2 pixel) {
+CameraRay camera_ray(const Camera& camera, int width, int height, vec2 pixel, vec2 lens) {
   const vec3 position(camera.position), forward = glm::normalize(vec3(camera.look_at) - position);
   const vec3 right = glm::normalize(glm::cross(forward, vec3(camera.up)));
   const vec3 up = glm::cross(right, forward);
@@ -229,6 +244,15 @@ CameraRay camera_ray(const Camera& camera, int width, int height, vec2 pixel) {
   ray.origin = position;
   ray.direction = glm::normalize(forward + sx * right + sy * up);
   ray.spread = 2.0f * tan_half / float(height);
+  if (camera.aperture_radius > 0.0) {
+    // The pinhole ray's point on the plane in focus (perpendicular to the view direction), seen from a
+    // point of the lens drawn uniformly over its disk.
+    const vec3 focus = position + (forward + sx * right + sy * up) * float(camera.focus());
+    const float r = float(camera.aperture_radius) * std::sqrt(lens.x);
+    const float phi = 2.0f * std::numbers::pi_v<float> * lens.y;
+    ray.origin = position + right * (r * std::cos(phi)) + up * (r * std::sin(phi));
+    ray.direction = glm::normalize(focus - ray.origin);
+  }
   return ray;
 }
 
@@ -237,42 +261,86 @@ RenderResult render(const RenderScene& scene, const Camera& camera, const Render
   result.width = options.width;
   result.height = options.height;
   const size_t pixels = size_t(options.width) * size_t(options.height);
+  // Sums over the samples until the end, then means.
   result.radiance.assign(pixels, vec3(0.0f));
   if (options.aovs) {
     result.albedo.assign(pixels, vec3(0.0f));
     result.normal.assign(pixels, vec3(0.0f));
   }
+  const bool budgeted = options.time_budget > 0.0;
+  // With a budget, every pixel's random stream, carried from pass to pass; in one pass, each row makes
+  // its pixels' streams as it goes.
+  std::vector<cpu::Pcg32> streams;
+  if (budgeted) {
+    streams.reserve(pixels);
+    for (size_t i = 0; i < pixels; ++i) streams.emplace_back(options.seed, uint64_t(i));
+  }
+  const bool lens = camera.aperture_radius > 0.0;
   std::vector<Counters> row_counters(size_t(options.height));
-  std::atomic<int> rows_done{0};
   const std::thread::id caller = std::this_thread::get_id();
-  auto render_row = [&](size_t row) {
-    Counters& counters = row_counters[row];
-    for (int x = 0; x < options.width; ++x) {
-      const size_t index = row * size_t(options.width) + size_t(x);
-      // One stream per pixel: what a pixel draws does not depend on which thread renders it.
-      cpu::Pcg32 rng(options.seed, uint64_t(index));
-      PathResult sum;
-      for (int s = 0; s < options.samples; ++s) {
-        const vec2 jitter(rng.uniform(), rng.uniform());
-        const CameraRay ray = camera_ray(camera, options.width, options.height, vec2(float(x), float(row)) + jitter);
-        const PathResult path = trace(scene, options, ray, options.aovs && s < kAovSamples, rng, counters);
-        sum.radiance += path.radiance;
-        sum.albedo += path.albedo;
-        sum.normal += path.normal;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  auto run_pass = [&](int first, int count) {
+    std::atomic<int> rows_done{0};
+    auto render_row = [&](size_t row) {
+      Counters& counters = row_counters[row];
+      for (int x = 0; x < options.width; ++x) {
+        const size_t index = row * size_t(options.width) + size_t(x);
+        // One stream per pixel: what a pixel draws does not depend on which thread renders it.
+        cpu::Pcg32 own(options.seed, uint64_t(index));
+        cpu::Pcg32& rng = budgeted ? streams[index] : own;
+        for (int s = first; s < first + count; ++s) {
+          const vec2 jitter(rng.uniform(), rng.uniform());
+          vec2 lens_u(0.0f);
+          if (lens) lens_u = vec2(rng.uniform(), rng.uniform());
+          const CameraRay ray =
+              camera_ray(camera, options.width, options.height, vec2(float(x), float(row)) + jitter, lens_u);
+          const PathResult path = trace(scene, options, ray, options.aovs && s < kAovSamples, rng, counters);
+          result.radiance[index] += path.radiance;
+          if (options.aovs) {
+            result.albedo[index] += path.albedo;
+            result.normal[index] += path.normal;
+          }
+        }
       }
-      const float inverse = 1.0f / float(options.samples);
-      result.radiance[index] = sum.radiance * inverse;
-      if (options.aovs) {
-        result.albedo[index] = sum.albedo / float(std::min(options.samples, kAovSamples));
-        const float length = glm::length(sum.normal);
-        result.normal[index] = length > 0.0f ? sum.normal / length : vec3(0.0f);
-      }
-    }
-    const int done = ++rows_done;
-    if (options.progress && std::this_thread::get_id() == caller)
-      options.progress(double(done) / double(options.height));
+      const int done = ++rows_done;
+      if (options.progress && std::this_thread::get_id() == caller)
+        options.progress(budgeted ? std::min(1.0, elapsed() / options.time_budget)
+                                  : (first + count * double(done) / double(options.height)) / options.samples);
+    };
+    parallel_for(size_t(options.height), render_row, size_t(std::max(options.threads, 0)));
   };
-  parallel_for(size_t(options.height), render_row, size_t(std::max(options.threads, 0)));
+
+  if (!budgeted) {
+    run_pass(0, options.samples);
+    result.samples = options.samples;
+  } else {
+    // Passes that double the samples so far, each as large as the time left holds at the rate measured
+    // so far; the first is one sample, whatever the budget (an image is never empty).
+    int done = 0;
+    while (done < options.samples) {
+      int count = 1;
+      if (done > 0) {
+        const double per_sample = elapsed() / done, left = options.time_budget - elapsed();
+        count = int(std::min({left / per_sample, double(done), double(options.samples - done)}));
+        if (count < 1) break;
+      }
+      run_pass(done, count);
+      done += count;
+    }
+    result.samples = done;
+  }
+
+  const float inverse = 1.0f / float(result.samples);
+  for (size_t i = 0; i < pixels; ++i) {
+    result.radiance[i] *= inverse;
+    if (options.aovs) {
+      result.albedo[i] /= float(std::min(result.samples, kAovSamples));
+      const float length = glm::length(result.normal[i]);
+      result.normal[i] = length > 0.0f ? result.normal[i] / length : vec3(0.0f);
+    }
+  }
   for (const Counters& c : row_counters) {
     result.camera_rays += c.camera;
     result.shadow_rays += c.shadow;

@@ -27,19 +27,22 @@ enum class Estimator {
 struct RenderOptions {
   int width = 480;
   int height = 320;
-  int samples = 16;        // per pixel
-  uint64_t seed = 0;       // the same seed gives the same image, bit for bit, whatever the thread count
-  int threads = 0;         // 0: one per core
-  int max_depth = 8;       // bounces: surfaces a path is shaded at (1: direct light only, and what one bounce shows)
-  int roulette_depth = 3;  // Russian roulette from this many bounces on
+  int samples = 16;          // per pixel; with a time budget, the most it may take
+  double time_budget = 0.0;  // seconds of path tracing (after the scene's preparation); 0: none
+  uint64_t seed = 0;         // the same seed gives the same image, bit for bit, whatever the thread count
+  int threads = 0;           // 0: one per core
+  int max_depth = 8;         // bounces: surfaces a path is shaded at (1: direct light only, and what one bounce shows)
+  int roulette_depth = 3;    // Russian roulette from this many bounces on
   Estimator estimator = Estimator::Mis;
   bool aovs = false;  // also the first hit's albedo and normal, for denoisers
-  // Called now and then from the thread that called render, with the share of rows done.
+  // Called now and then from the thread that called render, with the share of the work done (of the
+  // samples, or of the time budget).
   std::function<void(double)> progress;
 };
 
 struct RenderResult {
   int width = 0, height = 0;
+  int samples = 0;                  // per pixel: options.samples, or what fitted in the time budget
   std::vector<glm::vec3> radiance;  // linear, rows from the top, the mean over the pixel's samples
   std::vector<glm::vec3> albedo;    // with aovs: the first hit's directional albedo (0 where a ray escapes),
                                     // over the pixel's first 4 samples
@@ -48,16 +51,21 @@ struct RenderResult {
   uint64_t camera_rays = 0, shadow_rays = 0, bounce_rays = 0;
 };
 
-// The pinhole camera's ray through pixel position `pixel` (in pixels from the top-left corner of a
-// width x height image): its direction (unit), and the angle one pixel subtends (the ray cone's
-// spread).
+// The camera's ray through pixel position `pixel` (in pixels from the top-left corner of a width x
+// height image): its origin, its direction (unit), and the angle one pixel subtends (the ray cone's
+// spread). A camera with an aperture is a thin lens: the ray starts at a point of the lens drawn
+// from `lens` (two uniform numbers; a pinhole ignores them) and passes through the point the
+// pinhole ray meets on the plane in focus.
 struct CameraRay {
   glm::vec3 origin{0.0f};
   glm::vec3 direction{0.0f, 0.0f, -1.0f};
   float spread = 0.0f;
 };
-CameraRay camera_ray(const Camera& camera, int width, int height, glm::vec2 pixel);
+CameraRay camera_ray(const Camera& camera, int width, int height, glm::vec2 pixel, glm::vec2 lens = glm::vec2(0.0f));
 
+// Renders `samples` per pixel, or with a time budget, passes of samples until the next would not
+// fit: each pixel carries its random stream from pass to pass, so an image of N samples is the
+// same, bit for bit, however the passes divided them.
 RenderResult render(const RenderScene& scene, const Camera& camera, const RenderOptions& options);
 
 }  // namespace lamina::render

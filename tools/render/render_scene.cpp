@@ -6,8 +6,10 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <set>
 
 #include "graph/compile.h"
+#include "graph/node_decl.h"
 
 namespace lamina::render {
 
@@ -60,9 +62,20 @@ glm::dmat4 object_to_world(const Transform& t) {
          glm::scale(glm::dmat4(1.0), t.scale);
 }
 
+// A bottom-level scene of one geometry, whose buffers are filled: committed, and the geometry released
+// to it.
+RTCScene scene_of(Device& device, RTCGeometry geometry) {
+  RTCScene scene = rtcNewScene(device.get());
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(scene, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  device.check("building a geometry's hierarchy");
+  return scene;
+}
+
 // A bottom-level scene holding one triangle mesh.
 RTCScene mesh_scene(Device& device, const TriangleMesh& mesh) {
-  RTCScene scene = rtcNewScene(device.get());
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.positions.size()));
@@ -72,12 +85,44 @@ RTCScene mesh_scene(Device& device, const TriangleMesh& mesh) {
   for (size_t i = 0; i < mesh.positions.size(); ++i)
     for (int c = 0; c < 3; ++c) vertices[3 * i + size_t(c)] = mesh.positions[i][c];
   std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometryByID(scene, geometry, 0);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene);
-  device.check("building a mesh's hierarchy");
-  return scene;
+  return scene_of(device, geometry);
+}
+
+// Whether a material's textures read uv: one of its texture nodes has detail over uv.
+bool reads_uv(const Program& program) {
+  return std::any_of(program.ops.begin(), program.ops.end(), [](const TextureOp& op) {
+    return op.decl && op.decl->uv_detail && op.decl->uv_detail(op) > 0.0f;
+  });
+}
+
+// How many of a mesh's triangles (of those with area) have no area in uv: there textures over uv are
+// not filtered (the footprint has no uv size) and the tangent is arbitrary (mesh_shading.h).
+struct UvCoverage {
+  size_t without_uv_area = 0, triangles = 0;
+};
+UvCoverage uv_coverage(const TriangleMesh& mesh) {
+  UvCoverage c;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], k = mesh.indices[t + 2];
+    const glm::dvec3 e1(mesh.positions[b] - mesh.positions[a]), e2(mesh.positions[k] - mesh.positions[a]);
+    if (!(glm::length(glm::cross(e1, e2)) > 0.0)) continue;
+    ++c.triangles;
+    const glm::dvec2 d1(mesh.uvs[b] - mesh.uvs[a]), d2(mesh.uvs[k] - mesh.uvs[a]);
+    if (std::abs(d1.x * d2.y - d2.x * d1.y) < 1e-20) ++c.without_uv_area;  // generate_tangents' threshold
+  }
+  return c;
+}
+
+// A bottom-level scene holding one exact sphere of `radius` about the origin (Embree's sphere
+// point): no facets, and a shading normal that is the geometric one.
+RTCScene sphere_scene(Device& device, float radius) {
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* point = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  device.check("allocating a sphere");
+  point[0] = point[1] = point[2] = 0.0f;
+  point[3] = radius;
+  return scene_of(device, geometry);
 }
 
 RTCRayHit make_ray(glm::vec3 origin, glm::vec3 direction, float t_max) {
@@ -136,23 +181,34 @@ const Camera* check_renderable(const Scene& scene, const std::string& camera_nam
   return diagnostics.ok() ? camera : nullptr;
 }
 
-RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy) : device_(std::make_unique<Device>()) {
+RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy, Diagnostics* warnings)
+    : device_(std::make_unique<Device>()) {
   top_ = rtcNewScene(device_->get());
   std::map<std::string, int> mesh_of_key, material_of_name;
+  std::set<std::pair<int, int>> uv_checked;  // (mesh, material) pairs, warned about once
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
-    const std::string key = geometry_key(object);
+    // Spheres are exact, except those that emit: light samples land on the triangles of the mesh,
+    // so rays must meet the same surface.
+    const bool exact_sphere = object.shape == ShapeType::Sphere && object.emission == glm::dvec3(0.0);
+    const std::string key = geometry_key(object) + (exact_sphere ? " exact" : "");
     auto [it, added] = mesh_of_key.try_emplace(key, int(meshes_.size()));
     if (added) {
       Mesh m;
       m.mesh = object_mesh(object, policy);
-      m.scene = mesh_scene(*device_, m.mesh);
+      if (exact_sphere) {
+        m.sphere_radius = float(object.radius);
+        m.scene = sphere_scene(*device_, m.sphere_radius);
+      } else {
+        m.scene = mesh_scene(*device_, m.mesh);
+      }
       meshes_.push_back(std::move(m));
     }
     Instance instance;
     instance.mesh = it->second;
     const glm::dmat4 to_world = object_to_world(object.transform);
     instance.to_world = glm::mat4(to_world);
+    instance.to_object = glm::mat4(glm::inverse(to_world));
     instance.normal_to_world = glm::mat3(glm::transpose(glm::inverse(glm::dmat3(to_world))));
     instance.mirrored = glm::determinant(glm::dmat3(to_world)) < 0.0;
     instances_.push_back(instance);
@@ -176,6 +232,25 @@ RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy) : device
       materials_.push_back(std::make_unique<cpu::Evaluator>(compile(file->document, object.material)));
     }
     object_material_.push_back(material->second);
+    if (warnings && uv_checked.emplace(instance.mesh, material->second).second &&
+        reads_uv(materials_[size_t(material->second)]->program())) {
+      const UvCoverage c = uv_coverage(meshes_[size_t(instance.mesh)].mesh);
+      const std::string pointer =
+          "/objects/" + std::to_string(i) + (object.shape == ShapeType::Mesh ? std::string("/file") : std::string());
+      const std::string textured = "material " + quote_excerpt(object.material) + " reads textures over uv";
+      if (c.without_uv_area > 0 && c.without_uv_area == c.triangles)
+        warnings->warning(scene.path, pointer,
+                          "object " + quote_excerpt(object.name) +
+                              ": its mesh has no texture coordinates (no triangle has an area in uv), and " + textured +
+                              ": it shows the textures' value at one point of uv, everywhere",
+                          "give the mesh TEXCOORD_0, or read the textures over position (\"space\": \"position\")");
+      else if (c.without_uv_area > 0)
+        warnings->warning(scene.path, pointer,
+                          "object " + quote_excerpt(object.name) + ": " + std::to_string(c.without_uv_area) +
+                              " of its mesh's " + std::to_string(c.triangles) + " triangles have no area in uv, and " +
+                              textured + ": on those, textures are not filtered and the tangent is arbitrary",
+                          "give every triangle distinct texture coordinates at its corners");
+    }
 
     emission_.push_back(glm::vec3(object.emission));
     if (object.emission != glm::dvec3(0.0)) {
@@ -253,6 +328,11 @@ std::optional<SurfaceHit> RenderScene::intersect(glm::vec3 origin, glm::vec3 dir
   SurfaceHit hit;
   hit.object = int(r.hit.instID[0]);
   const Instance& instance = instances_[size_t(hit.object)];
+  hit.distance = r.ray.tfar;
+  if (const float radius = meshes_[size_t(instance.mesh)].sphere_radius; radius > 0.0f) {
+    sphere_hit(instance, radius, origin + direction * r.ray.tfar, hit);
+    return hit;
+  }
   const TriangleMesh& mesh = meshes_[size_t(instance.mesh)].mesh;
   const uint32_t* corner = &mesh.indices[3 * size_t(r.hit.primID)];
   const float b1 = r.hit.u, b2 = r.hit.v, b0 = 1.0f - b1 - b2;
@@ -265,7 +345,6 @@ std::optional<SurfaceHit> RenderScene::intersect(glm::vec3 origin, glm::vec3 dir
   const glm::vec3 p2 = glm::vec3(instance.to_world * glm::vec4(mesh.positions[corner[2]], 1.0f));
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float twice_area = glm::length(cross);
-  hit.distance = r.ray.tfar;
   hit.position = b0 * p0 + b1 * p1 + b2 * p2;
   hit.geometric_normal =
       twice_area > 0.0f ? cross / twice_area * (instance.mirrored ? -1.0f : 1.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -280,6 +359,33 @@ std::optional<SurfaceHit> RenderScene::intersect(glm::vec3 origin, glm::vec3 dir
   const float twice_uv_area = std::abs(e1.x * e2.y - e1.y * e2.x);
   hit.uv_per_length = twice_area > 0.0f ? std::sqrt(twice_uv_area / twice_area) : 0.0f;
   return hit;
+}
+
+void RenderScene::sphere_hit(const Instance& instance, float radius, glm::vec3 world_point, SurfaceHit& hit) const {
+  // The object-space point's direction gives everything as sphere_mesh defines it (graph/scene/
+  // primitives.cpp): n = (sin theta sin phi, cos theta, sin theta cos phi), u = phi / 2 pi, v = theta / pi.
+  const glm::vec3 local = glm::vec3(instance.to_object * glm::vec4(world_point, 1.0f));
+  const float length = glm::length(local);
+  const glm::vec3 n = length > 0.0f ? local / length : glm::vec3(0.0f, 1.0f, 0.0f);
+  const float two_pi = 2.0f * std::numbers::pi_v<float>, pi = std::numbers::pi_v<float>;
+  float phi = std::atan2(n.x, n.z);
+  if (phi < 0.0f) phi += two_pi;
+  const float theta = std::acos(std::clamp(n.y, -1.0f, 1.0f));
+  const float sin_theta = std::sin(theta);
+  hit.uv = glm::vec2(phi / two_pi, theta / pi);
+  hit.position = glm::vec3(instance.to_world * glm::vec4(radius * n, 1.0f));
+  const glm::vec3 normal = glm::normalize(instance.normal_to_world * n);
+  hit.geometric_normal = hit.normal = normal;
+  const glm::mat3 linear(instance.to_world);
+  const glm::vec3 along_phi(std::cos(phi), 0.0f, -std::sin(phi));  // dP/dphi's direction, defined at the poles too
+  hit.tangent = linear * along_phi;
+  // uv per length: 1 / sqrt of the world area one unit of uv covers, |dP/du x dP/dv|, with
+  // dP/du = 2 pi r sin(theta) along_phi and dP/dv = pi r dn/dtheta (at least 1e-3 of the equator's
+  // sin(theta), so that the poles' point has a finite footprint).
+  const glm::vec3 along_theta(std::cos(theta) * std::sin(phi), -sin_theta, std::cos(theta) * std::cos(phi));
+  const float area = glm::length(glm::cross(linear * along_phi, linear * along_theta)) * two_pi * pi * radius * radius *
+                     std::max(sin_theta, 1e-3f);
+  hit.uv_per_length = area > 0.0f ? 1.0f / std::sqrt(area) : 0.0f;
 }
 
 EmitterSample RenderScene::sample_emitter(glm::vec3 from, glm::vec3 u) const {

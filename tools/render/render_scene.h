@@ -68,8 +68,9 @@ class RenderScene {
  public:
   // Builds everything `scene` (read and checked by read_scene) needs for rendering. Meshes and
   // images are loaded under `policy`. Throws IoError when a file can no longer be read or Embree
-  // fails.
-  RenderScene(const Scene& scene, const AssetPolicy& policy);
+  // fails. What renders but not as its author may expect goes to `warnings`, with the object's
+  // pointer: a mesh whose triangles have no uv area under a material whose textures read uv.
+  RenderScene(const Scene& scene, const AssetPolicy& policy, Diagnostics* warnings = nullptr);
   ~RenderScene();
   RenderScene(const RenderScene&) = delete;
   RenderScene& operator=(const RenderScene&) = delete;
@@ -98,15 +99,20 @@ class RenderScene {
 
  private:
   struct Mesh {
-    TriangleMesh mesh;
+    TriangleMesh mesh;  // for a sphere too: its bounds, and the uv check
     RTCScene scene = nullptr;
+    float sphere_radius = 0.0f;  // > 0: Embree's exact sphere of this radius about the origin
   };
   struct Instance {
     int mesh = 0;
     glm::mat4 to_world{1.0f};
+    glm::mat4 to_object{1.0f};        // the inverse of to_world
     glm::mat3 normal_to_world{1.0f};  // inverse transpose of the linear part
     bool mirrored = false;            // a negative determinant turns the winding
   };
+
+  // The hit of an exact sphere of `radius` (object space) at `world_point`: all but object and distance.
+  void sphere_hit(const Instance& instance, float radius, glm::vec3 world_point, SurfaceHit& hit) const;
 
   std::unique_ptr<Device> device_;
   RTCScene top_ = nullptr;

@@ -429,6 +429,24 @@ TEST_CASE("glTF export: an environment light is left out with a note, in the lib
   CHECK(std::filesystem::exists(dir.path() / "env.glb"));
 }
 
+TEST_CASE("glTF export: what glTF cannot hold of render-only settings is noted, and the rest written") {
+  Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
+    "cameras": [{"name": "lens", "position": [0, 1, 5], "aperture_radius": 0.05, "focus_distance": 4}],
+    "lights": [{"name": "sun", "type": "directional", "angular_radius": 0.27}],
+    "objects": [{"name": "lamp", "shape": "box", "material": "brass", "emission": [2, 2, 2]}]})");
+  const gltf::Export out = gltf::export_scene(scene, "notes.glb", quick());
+  std::string notes;
+  for (const auto& n : out.notes) notes += n + "\n";
+  INFO(notes);
+  CHECK(out.notes.size() == 3);
+  CHECK(notes.find("camera 'lens' is written as a pinhole") != std::string::npos);
+  CHECK(notes.find("directional light 'sun' is written as a point at infinity") != std::string::npos);
+  CHECK(notes.find("object 'lamp'") != std::string::npos);
+  const Json j = glb_json(out.files[0].bytes);
+  CHECK(j["cameras"].size() == 1);
+  CHECK(j["extensions"]["KHR_lights_punctual"]["lights"].size() == 1);
+}
+
 TEST_CASE("glTF export: box, torus and mesh-file objects have their vertices, bounds and transforms") {
   Scene scene = scene_of(R"({"format": 1, "materials": ["../materials/brass.json"],
     "objects": [{"name": "crate", "shape": "box", "size": [1, 2, 3], "material": "brass",

@@ -66,6 +66,8 @@ TEST_CASE("what a scene file leaves out reads as the initialisers of the scene s
   CHECK(s.cameras[0].znear == camera.znear);
   CHECK(s.cameras[0].zfar == camera.zfar);
   CHECK(s.cameras[0].exposure == camera.exposure);
+  CHECK(s.cameras[0].aperture_radius == camera.aperture_radius);
+  CHECK(s.cameras[0].focus_distance == camera.focus_distance);
 
   REQUIRE(s.lights.size() == 4);
   const Light light;

@@ -44,6 +44,15 @@ MeanError mean_error(const std::vector<double>& values) {
   return m;
 }
 
+// Uniform pairs in [0, 1)^2 from a fixed PCG32 stream.
+struct Pcg32Directions {
+  cpu::Pcg32 rng{7, 3};
+  glm::vec2 next() {
+    const float a = rng.uniform();
+    return glm::vec2(a, rng.uniform());
+  }
+};
+
 double average(vec3 c) { return (double(c.x) + double(c.y) + double(c.z)) / 3.0; }
 
 // A camera 4 units in front of a unit sphere at the origin, framing it tightly.
@@ -326,6 +335,224 @@ TEST_CASE("the same seed gives the same image bit for bit whatever the thread co
   CHECK(images[0] == images[2]);
   options.seed = 12;
   CHECK(render::render(prepared, scene.cameras[0], options).radiance != images[0]);
+}
+
+TEST_CASE("a time budget renders passes whose image equals one pass of as many samples, bit for bit") {
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json", "../../../examples/materials/aventurine_glass.json"], "cameras": [{"name": "c", "position": [0, 1.5, 4], "look_at": [0, 0.5, 0]}], "lights": [{"name": "sky", "type": "environment", "file": "sky.png"}], "objects": [{"name": "ball", "shape": "sphere", "material": "aventurine_glass", "transform": {"translation": [0, 1, 0]}}, {"name": "floor", "shape": "plane", "size": [6, 6], "material": "grey"}]})");
+  const render::RenderScene prepared(scene, test::repository_policy());
+  render::RenderOptions options;
+  options.width = 24;
+  options.height = 16;
+  options.seed = 5;
+  options.aovs = true;
+  auto same = [](const render::RenderResult& a, const render::RenderResult& b) {
+    return a.samples == b.samples && a.radiance == b.radiance && a.albedo == b.albedo && a.normal == b.normal;
+  };
+  // A budget far beyond the cap: passes of 1, 1, 2 and 1 samples.
+  options.samples = 5;
+  options.time_budget = 600.0;
+  const auto passes = render::render(prepared, scene.cameras[0], options);
+  CHECK(passes.samples == 5);
+  options.time_budget = 0.0;
+  CHECK(same(passes, render::render(prepared, scene.cameras[0], options)));
+
+  // A budget that ends the passes before the cap: whatever number of samples fitted.
+  options.samples = 1 << 20;
+  options.time_budget = 0.2;
+  const auto timed = render::render(prepared, scene.cameras[0], options);
+  CHECK(timed.samples >= 1);
+  options.samples = timed.samples;
+  options.time_budget = 0.0;
+  CHECK(same(timed, render::render(prepared, scene.cameras[0], options)));
+}
+
+// The share of a disk of unit radius left of the line x = u: a straight edge seen through a disk.
+double disk_share_left_of(double u) {
+  u = std::clamp(u, -1.0, 1.0);
+  return 0.5 + (u * std::sqrt(1.0 - u * u) + std::asin(u)) / std::numbers::pi;
+}
+
+TEST_CASE("a thin lens keeps the plane in focus sharp and blurs an edge off it into the lens disk's profile") {
+  // Looking straight down at the edge x = 0 of a black floor (x < 0) over a uniform sky of radiance 1:
+  // the image is black on the left and 1 on the right, the edge between columns 31 and 32.
+  auto scene_with = [](const std::string& lens) {
+    return render_scene_text(
+        R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "down", "position": [0, 4, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "yfov": 10, "aspect": 4, "aperture_radius": 0.2)" +
+        lens +
+        R"(}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "black", "transform": {"translation": [-20, 0, 0]}}]})");
+  };
+  const int width = 64, height = 16;
+  render::RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.samples = 64;
+  auto column_means = [&](const Scene& scene) {
+    const render::RenderScene prepared(scene, test::repository_policy());
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    std::vector<double> means(size_t(width), 0.0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) means[size_t(x)] += average(image.radiance[size_t(y * width + x)]) / height;
+    return means;
+  };
+
+  SUBCASE("focused on the floor (look_at, by default), every pixel is wholly floor or wholly sky") {
+    // Beside the edge, a sample's position rounds to the pixel border now and then (31 + 0.99999994 is
+    // 32 in single precision), as a pinhole's would.
+    const auto means = column_means(scene_with(""));
+    for (int x = 0; x < width; ++x) {
+      CAPTURE(x);
+      if (x == width / 2 - 1 || x == width / 2)
+        CHECK(std::abs(means[size_t(x)] - (x < width / 2 ? 0.0 : 1.0)) < 0.01);
+      else
+        CHECK(means[size_t(x)] == (x < width / 2 ? 0.0 : 1.0));
+    }
+  }
+  SUBCASE("focused at half the floor's distance, a point of the edge spreads over the lens's disk") {
+    // A ray through image coordinate t (the tangent across the view) from lens point x_l meets the floor
+    // at x_l (1 - d / f) + t d: it sees the sky where x_l < t d f / (d - f), a disk's share left of a line.
+    const double d = 4.0, f = 2.0, r = 0.2;
+    const double tan_half = std::tan(5.0 * std::numbers::pi / 180.0), aspect = double(width) / height;
+    const auto means = column_means(scene_with(R"(, "focus_distance": 2)"));
+    int blurred = 0;
+    for (int x = 0; x < width; ++x) {
+      double expected = 0.0;
+      const int steps = 256;
+      for (int k = 0; k < steps; ++k) {
+        const double t = (2.0 * (x + (k + 0.5) / steps) / width - 1.0) * tan_half * aspect;
+        expected += disk_share_left_of(t * d * f / ((d - f) * r)) / steps;
+      }
+      const double samples = double(height) * options.samples;
+      const double error = std::sqrt(expected * (1.0 - expected) / samples);
+      INFO("column " << x << ": " << means[size_t(x)] << ", expected " << expected);
+      CHECK(std::abs(means[size_t(x)] - expected) <= 4.0 * error + 1e-6);
+      if (expected > 0.02 && expected < 0.98) ++blurred;
+    }
+    // The circle of confusion's radius, r (d - f) / (d f) = 0.05 in tangent units, is 4.6 pixels.
+    CHECK(blurred >= 7);
+  }
+}
+
+TEST_CASE("a mesh without uv area under a material whose textures read uv is a warning at the object") {
+  auto warnings_for = [](const std::string& objects) {
+    const Scene scene = render_scene_text(
+        R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "c"}], "lights": [{"name": "sky", "type": "environment"}], "objects": [)" +
+        objects + "]}");
+    Diagnostics warnings;
+    const render::RenderScene prepared(scene, test::repository_policy(), &warnings);
+    CHECK(warnings.errors().empty());
+    std::vector<std::string> lines;
+    for (const auto& d : warnings.warnings()) lines.push_back(d.pointer + ": " + d.message);
+    return lines;
+  };
+  auto mesh = [](const std::string& name, const std::string& file, const std::string& material) {
+    return R"({"name": ")" + name + R"(", "shape": "mesh", "file": "../scenes/)" + file + R"(", "material": ")" +
+           material + R"("})";
+  };
+  SUBCASE("no texture coordinates at all: one warning however many objects share the mesh and material") {
+    const auto lines = warnings_for(mesh("a", "quad_without_uv.gltf", "checkered") + ", " +
+                                    mesh("b", "quad_without_uv.gltf", "checkered"));
+    REQUIRE(lines.size() == 1);
+    CAPTURE(lines[0]);
+    CHECK(lines[0].find(R"(/objects/0/file: object "a": its mesh has no texture coordinates)") == 0);
+  }
+  SUBCASE("some triangles without uv area: how many, of how many") {
+    const auto lines = warnings_for(mesh("a", "quad_half_uv.gltf", "checkered"));
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].find("1 of its mesh's 2 triangles have no area in uv") != std::string::npos);
+  }
+  SUBCASE("nothing to say where the uvs have area, or where the material does not read uv") {
+    CHECK(warnings_for(mesh("a", "quad.gltf", "checkered")).empty());
+    CHECK(warnings_for(mesh("a", "quad_without_uv.gltf", "grey") + ", " + mesh("b", "quad_without_uv.gltf", "carved"))
+              .empty());
+    for (const char* shape : {"sphere", "plane", "box", "torus"})
+      CHECK(
+          warnings_for(R"({"name": "a", "shape": ")" + std::string(shape) + R"(", "material": "checkered"})").empty());
+  }
+}
+
+TEST_CASE("a coarsely tessellated torus shows no black rim where its shading normals face away from the camera") {
+  // A 6-segment torus's interpolated normals face away from the camera near its outline, on triangles
+  // the camera sees from the front. Lit by a uniform sky, a white Lambertian surface is never black.
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "front", "position": [0, 2, 4], "look_at": [0, 0, 0], "yfov": 40, "aspect": 1}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "ring", "shape": "torus", "major_radius": 1, "minor_radius": 0.5, "material": "white", "segments": 6}]})");
+  const render::RenderScene prepared(scene, test::repository_policy());
+  const int size = 48;
+  render::RenderOptions options;
+  options.width = options.height = size;
+  options.samples = 16;
+  options.max_depth = 1;
+  const auto image = render::render(prepared, scene.cameras[0], options);
+  int facing_away = 0, covered = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      bool all = true;  // every corner of the pixel sees the torus
+      for (int corner = 0; corner < 4 && all; ++corner) {
+        const auto ray =
+            render::camera_ray(scene.cameras[0], size, size, glm::vec2(float(x + corner % 2), float(y + corner / 2)));
+        const auto hit = prepared.intersect(ray.origin, ray.direction, 100.0f);
+        all = hit.has_value();
+        if (hit && glm::dot(hit->normal, -ray.direction) < 0.0f) ++facing_away;
+      }
+      if (!all) continue;
+      ++covered;
+      CAPTURE(x);
+      CAPTURE(y);
+      CHECK(average(image.radiance[size_t(y * size + x)]) > 0.25);
+    }
+  CHECK(covered > size * size / 8);
+  CHECK(facing_away > 0);  // the case this is about occurs
+}
+
+TEST_CASE("a sphere renders exact: its outline is a circle whatever its tessellation, and its normal the radius's") {
+  // Seen from 4 units, a unit sphere's outline subtends asin(1/4); a 6-segment mesh would cut corners.
+  const Scene scene = render_scene_text(
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "front", "position": [0, 0, 4], "look_at": [0, 0, 0], "yfov": 40, "aspect": 1}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "ball", "shape": "sphere", "radius": 1, "material": "white", "segments": 6, "transform": {"rotation_deg": [20, 30, 0]}}]})");
+  const render::RenderScene prepared(scene, test::repository_policy());
+  const double outline = std::asin(0.25);
+  Pcg32Directions directions;
+  for (int i = 0; i < 2000; ++i) {
+    // Directions within 1.5 times the outline's angle of the view axis.
+    const glm::vec2 u = directions.next();
+    const double angle = 1.5 * outline * std::sqrt(double(u.x)), phi = 2.0 * std::numbers::pi * double(u.y);
+    const vec3 d(float(std::sin(angle) * std::cos(phi)), float(std::sin(angle) * std::sin(phi)),
+                 float(-std::cos(angle)));
+    if (std::abs(angle - outline) < 1e-4) continue;  // too close to call in single precision
+    const auto hit = prepared.intersect(vec3(0.0f, 0.0f, 4.0f), d, 100.0f);
+    CAPTURE(angle);
+    REQUIRE(hit.has_value() == (angle < outline));
+    if (!hit) continue;
+    CHECK(glm::length(hit->position) == doctest::Approx(1.0).epsilon(1e-5));
+    CHECK(glm::dot(hit->normal, hit->position) == doctest::Approx(1.0).epsilon(1e-5));
+    CHECK(glm::dot(hit->geometric_normal, hit->normal) == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(std::abs(glm::dot(glm::normalize(hit->tangent), hit->normal)) < 1e-5);
+  }
+}
+
+TEST_CASE("an exact sphere's uv and tangent are those of its mesh, so textures lie where the mesh puts them") {
+  // Where a ray meets both the exact sphere and its 256-segment mesh (the glTF export's), uv and tangent
+  // agree to within the mesh's facets; the footprint's uv-per-length is that of the mesh's triangles.
+  const std::string common =
+      R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "c"}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "ball", "shape": "sphere", "radius": 2, "segments": 256, "material": "white", "transform": {"scale": [1, 1.5, 1], "rotation_deg": [10, 0, 0]})";
+  const Scene exact_scene = render_scene_text(common + "}]}");
+  const Scene mesh_scene = render_scene_text(common + R"(, "emission": [1, 1, 1]}]})");  // emitters stay meshes
+  const render::RenderScene exact(exact_scene, test::repository_policy()), mesh(mesh_scene, test::repository_policy());
+  Pcg32Directions directions;
+  int compared = 0;
+  for (int i = 0; i < 500; ++i) {
+    const glm::vec2 u = directions.next();
+    const vec3 target(4.0f * u.x - 2.0f, 6.0f * u.y - 3.0f, 0.0f);
+    const vec3 origin(0.3f, 0.2f, 8.0f);
+    const auto a = exact.intersect(origin, glm::normalize(target - origin), 100.0f);
+    const auto b = mesh.intersect(origin, glm::normalize(target - origin), 100.0f);
+    REQUIRE(a.has_value() == b.has_value());
+    if (!a || std::abs(a->uv.x - b->uv.x) > 0.5f) continue;  // none, or across the seam u = 0
+    ++compared;
+    CHECK(glm::distance(a->uv, b->uv) < 2e-3);
+    CHECK(glm::dot(glm::normalize(a->tangent), glm::normalize(b->tangent)) > 0.999);
+    CHECK(a->uv_per_length == doctest::Approx(b->uv_per_length).epsilon(0.05));
+  }
+  CHECK(compared > 100);
 }
 
 }  // namespace
