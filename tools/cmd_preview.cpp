@@ -19,6 +19,9 @@ namespace lamina::cli {
 namespace {
 
 constexpr int64_t kMaxSheetSide = 16384;
+constexpr int kMinPreviewSize = 16, kMaxPreviewSize = 4096;
+constexpr int kMaxPreviewSamples = 65536;
+constexpr double kMaxPreviewExposure = 64.0;
 
 struct PreviewOptions {
   std::vector<std::string> inputs;
@@ -32,6 +35,7 @@ struct PreviewOptions {
   double exposure = 0.0;
   std::string tone_map = "reinhard";
   std::string environment;
+  double environment_rotation = 0.0;
   int columns = 6;
   InputOptions input_options;
 };
@@ -47,9 +51,13 @@ int run_preview(const PreviewOptions& o) {
     print_problem(text);
     return kExitInvalid;
   };
-  if (o.size < 16 || o.size > 4096) return refuse("--size: expected 16 to 4096 pixels");
-  if (o.samples < 1 || o.samples > 65536) return refuse("--spp: expected 1 to 65536 samples per pixel");
-  if (!(std::abs(o.exposure) <= 64.0)) return refuse("--exposure: expected -64 to 64 stops");
+  const std::string sizes = std::to_string(kMinPreviewSize) + " to " + std::to_string(kMaxPreviewSize);
+  if (o.size < kMinPreviewSize || o.size > kMaxPreviewSize) return refuse("--size: expected " + sizes + " pixels");
+  if (o.samples < 1 || o.samples > kMaxPreviewSamples)
+    return refuse("--spp: expected 1 to " + std::to_string(kMaxPreviewSamples) + " samples per pixel");
+  if (!(std::abs(o.exposure) <= kMaxPreviewExposure)) return refuse("--exposure: expected -64 to 64 stops");
+  if (!(std::abs(o.environment_rotation) <= 360.0))
+    return refuse("--environment-rotation: expected -360 to 360 degrees");
   const std::string format = image_format(o.output);
   try {
     if (format.empty() || !image_codec().writes(format))
@@ -95,6 +103,7 @@ int run_preview(const PreviewOptions& o) {
   } catch (const ImageError& e) {
     return refuse("--environment: '" + o.environment + "' is not a readable image: " + e.what());
   }
+  environment.set_rotation(float(o.environment_rotation));
   plot::Fonts fonts;
   if (o.compare) {
     fonts = plot::find_fonts();
@@ -114,7 +123,8 @@ int run_preview(const PreviewOptions& o) {
   const int label = o.compare ? std::max(14, o.size / 9) : 0;
   if (int64_t(columns) * o.size > kMaxSheetSide || int64_t(rows) * (o.size + label) > kMaxSheetSide)
     return refuse("the sheet of " + std::to_string(count) + " previews of " + std::to_string(o.size) +
-                  " pixels would be more than 16384 pixels a side: lower --size or change --columns");
+                  " pixels would be more than " + std::to_string(kMaxSheetSide) +
+                  " pixels a side: lower --size or change --columns");
   plot::Canvas canvas(columns * o.size, rows * (o.size + label), glm::vec3(0.12f));
   plot::Text text(canvas, fonts);
   Progress progress;
@@ -185,6 +195,10 @@ void add_preview(CLI::App& app, Runner& runner) {
       ->capture_default_str();
   cmd->add_option("--environment", o->environment,
                   "an equirectangular image to light the preview with instead of the studio (radiance as stored)");
+  cmd->add_option("--environment-rotation", o->environment_rotation,
+                  "degrees to turn the environment (the studio or --environment) about the up axis; 90 brings "
+                  "the light from +x to -z")
+      ->capture_default_str();
   add_input_options(*cmd, o->input_options);
   cmd->callback([o, &runner] { runner = [o] { return run_preview(*o); }; });
 }

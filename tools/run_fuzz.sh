@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer program of tests/fuzz for a bounded time, each from its seed corpus
+# Runs every libFuzzer program of tests/fuzz for a bounded time, one per core at a time, each from its seed corpus
 # (tests/fuzz/seeds.txt) and its regression corpus, and prints executions and executions per
 # second per target. Each program finds its dictionary itself (tests/fuzz/fuzz_main.cpp). Exits 1 on the first finding, after saying where the failing input is kept and
 # how to add it to the regression corpus that the ordinary test suite replays.
@@ -28,11 +28,10 @@ shift $(($# < 2 ? $# : 2))
 # that a library of the image module (loaded at run time, graph/image_codec.h) had left behind.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:intercept_tls_get_addr=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-status=0
-for target in $targets; do
-  seeds="$work/$target/seeds"
-  corpus="$work/$target/corpus"
-  artifacts="$work/$target/artifacts"
+# One target per core at a time; each writes its own log, and the reports follow in the targets' order.
+fuzz_target() {
+  local target=$1
+  local seeds="$work/$target/seeds" corpus="$work/$target/corpus" artifacts="$work/$target/artifacts"
   mkdir -p "$seeds" "$corpus" "$artifacts"
   # Seeds: the files seeds.txt lists for this target, and every input that once failed.
   while read -r name folder extension; do
@@ -40,9 +39,26 @@ for target in $targets; do
     for f in "$folder"/*"$extension"; do [ -f "$f" ] && cp "$f" "$seeds/"; done
   done < <(grep -v '^#' tests/fuzz/seeds.txt)
   [ -d "tests/fuzz/regressions/$target" ] && cp tests/fuzz/regressions/"$target"/* "$seeds/" 2>/dev/null || true
-  log="$work/$target.log"
   if "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -seed="$seed" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$seeds" >"$log" 2>&1; then
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "$corpus" "$seeds" >"$work/$target.log" 2>&1; then
+    echo 0 >"$work/$target.status"
+  else
+    echo 1 >"$work/$target.status"
+  fi
+}
+cores=$(nproc)
+for target in $targets; do
+  while [ "$(jobs -rp | wc -l)" -ge "$cores" ]; do wait -n || true; done
+  fuzz_target "$target" &
+done
+wait
+
+status=0
+for target in $targets; do
+  corpus="$work/$target/corpus"
+  artifacts="$work/$target/artifacts"
+  log="$work/$target.log"
+  if [ "$(cat "$work/$target.status" 2>/dev/null)" = 0 ]; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
     cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)

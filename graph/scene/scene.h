@@ -55,6 +55,7 @@ struct Light {
   double outer_cone_deg = 45.0;         // spot
   double angular_radius_deg = 0.0;      // directional: the source's apparent radius (0: a point at infinity)
   std::optional<double> range;          // point, spot
+  double rotation_deg = 0.0;            // environment: the image turned about +y (counter-clockwise from above)
   std::string file;                     // environment: an equirectangular image, as written
   std::filesystem::path resolved_file;  // environment: the file against the scene's folder, lexically normal
   Reference reference;                  // environment: the file as file_access.h follows it

@@ -157,7 +157,12 @@ const std::vector<ParamDecl>& light_fields(LightType type) {
                     field("file", ValueType::String,
                           "an equirectangular image, relative to the scene file; none: a uniform sky of radiance "
                           "color times intensity")
-                        .optional()});
+                        .optional(),
+                    field("rotation", ValueType::Float,
+                          "the image turned about the up axis +y [degrees], counter-clockwise seen from above: 90 "
+                          "moves what the image shows along +x to -z")
+                        .range(-360.0, 360.0)
+                        .or_default(0.0)});
   switch (type) {
     case LightType::Point: return point;
     case LightType::Directional: return directional;

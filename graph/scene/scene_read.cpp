@@ -449,6 +449,7 @@ class SceneReader {
     if (v.declares("inner_cone")) l.inner_cone_deg = v.number("inner_cone");
     if (v.declares("outer_cone")) l.outer_cone_deg = v.number("outer_cone");
     if (v.declares("angular_radius")) l.angular_radius_deg = v.number("angular_radius");
+    if (v.declares("rotation")) l.rotation_deg = v.number("rotation");
     if (v.declares("direction")) {
       auto d = direction(v.vec3("direction"), pointer + "/direction", "direction");
       if (!d) return std::nullopt;

@@ -163,12 +163,14 @@ TEST_CASE("standard output that cannot be written is an I/O error with the syste
 TEST_CASE("a file size limit fails the write with its reason and leaves the previous output as it was") {
   test::TempDir dir;
   const fs::path p = project(dir);
-  REQUIRE(test::run_cli("plot car.json -o car.png --size 800", p).exit_code == 0);
+  // Every command writes through the same writer; render stands for the images (a 400-pixel sample
+  // sheet at one sample is some 18 KB, and quick under the sanitisers, where a plot takes half a minute).
+  REQUIRE(test::run_cli("render car.json -o car.png --width 400 --spp 1", p).exit_code == 0);
   REQUIRE(test::run_cli("glsl car.json -o car.glsl --uniforms", p).exit_code == 0);
   const auto before = snapshot(p);
   // 4 KiB: less than any of these outputs.
-  for (const std::string args : {"plot car.json -o car.png --size 1600", "glsl car.json -o car.glsl --uniforms",
-                                 "gltf car.json -o car.gltf", "schema -o ."}) {
+  for (const std::string args : {"render car.json -o car.png --width 400 --spp 2",
+                                 "glsl car.json -o car.glsl --uniforms", "gltf car.json -o car.gltf", "schema -o ."}) {
     CAPTURE(args);
     const auto r = test::run_cli_wrapped("prlimit --fsize=4096", args, p);
     expect_unchanged(r, 1, "File too large", before, p);
@@ -199,7 +201,9 @@ TEST_CASE("a full disk fails the write with its reason and leaves the previous o
   REQUIRE(test::run_cli("glsl car.json -o disk/car.glsl", p).exit_code == 0);
   const auto before = snapshot(p);
   // The next output needs room for its temporary beside the first one: the disk is full.
-  for (const std::string args : {"glsl patina.json -o disk/car.glsl", "plot car.json -o disk/car.png --size 1600"}) {
+  // The image: a linear EXR of 1000 pixels at one sample is some 380 KB, more than the room left.
+  for (const std::string args :
+       {"glsl patina.json -o disk/car.glsl", "render car.json -o disk/car.exr --width 1000 --spp 1"}) {
     CAPTURE(args);
     expect_unchanged(test::run_cli(args, p), 1, "No space left on device", before, p);
   }

@@ -121,6 +121,13 @@ TEST_CASE("lamina preview shows one material, or several side by side with --com
   CHECK(single->width == 32);
   CHECK(single->height == 32);
 
+  // The studio turned half a turn lights the ball from the other side: another image.
+  auto turned = test::run_cli(
+      "preview lambert.json --material grey -o turned.png --size 32 --spp 2 --environment-rotation 180", dir.path());
+  INFO(turned.err);
+  CHECK(turned.exit_code == 0);
+  CHECK(load_image_file(dir.path() / "turned.png", true)->texels != single->texels);
+
   auto all = test::run_cli("preview lambert.json --compare --columns 2 -o all.png --size 32 --spp 1", dir.path());
   INFO(all.err);
   CHECK(all.exit_code == 0);
@@ -132,7 +139,8 @@ TEST_CASE("lamina preview shows one material, or several side by side with --com
   CHECK(sheet->height > rows * 32);
 
   for (const std::string args : {"preview lambert.json -o x.png", "preview lambert.json --material gray -o x.png",
-                                 "preview lambert.json --material grey -o x.png --size 4"}) {
+                                 "preview lambert.json --material grey -o x.png --size 4",
+                                 "preview lambert.json --material grey -o x.png --environment-rotation 400"}) {
     CAPTURE(args);
     auto r = test::run_cli(args, dir.path());
     CHECK(r.exit_code == 2);

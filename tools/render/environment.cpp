@@ -76,17 +76,32 @@ int Environment::texel_index(glm::vec2 uv) const {
   return y * image_->width + x;
 }
 
+void Environment::set_rotation(float degrees) {
+  const float a = degrees * kPi / 180.0f, c = std::cos(a), s = std::sin(a);
+  // Columns: where x, y and z go.
+  to_world_ = glm::mat3(glm::vec3(c, 0.0f, -s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(s, 0.0f, c));
+  to_image_ = glm::transpose(to_world_);
+}
+
 glm::vec3 Environment::radiance(glm::vec3 direction) const {
   if (!present_) return glm::vec3(0.0f);
   if (!image_) return uniform_;
-  return glm::vec3(image_->texels[size_t(texel_index(equirect_uv(direction)))]) * scale_;
+  return image_radiance(to_image_ * direction);
 }
 
 float Environment::pdf(glm::vec3 direction) const {
   if (!present_) return 0.0f;
   if (!image_) return 1.0f / (4.0f * kPi);
-  const glm::vec2 uv = equirect_uv(direction);
-  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - direction.y * direction.y));
+  return image_pdf(to_image_ * direction);
+}
+
+glm::vec3 Environment::image_radiance(glm::vec3 local) const {
+  return glm::vec3(image_->texels[size_t(texel_index(equirect_uv(local)))]) * scale_;
+}
+
+float Environment::image_pdf(glm::vec3 local) const {
+  const glm::vec2 uv = equirect_uv(local);
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - local.y * local.y));
   if (!(sin_theta > 0.0f)) return 0.0f;
   // dw = 2 pi^2 sin(theta) du dv, and a texel spans 1 / (width height) of the uv square.
   const float texels = float(image_->width) * float(image_->height);
@@ -112,10 +127,11 @@ EnvironmentSample Environment::sample(glm::vec2 u) const {
   const int x = find_interval(cdf, w, u.x);
   const float in_texel = std::clamp((u.x - cdf[x]) / std::max(cdf[x + 1] - cdf[x], 1e-30f), 0.0f, 0.99999994f);
   const glm::vec2 uv((float(x) + in_texel) / float(w), (float(y) + in_row) / float(h));
-  s.wi = equirect_direction(uv);
-  s.pdf = pdf(s.wi);
+  const glm::vec3 local = equirect_direction(uv);
+  s.pdf = image_pdf(local);
   if (!(s.pdf > 0.0f)) return {};
-  s.radiance = radiance(s.wi);
+  s.wi = to_world_ * local;
+  s.radiance = image_radiance(local);
   return s;
 }
 

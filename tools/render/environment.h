@@ -37,6 +37,9 @@ class Environment {
   // which is what the sampling density assumes).
   Environment(std::shared_ptr<const LinearImage> image, glm::vec3 scale);
 
+  // Turns the image about +y by `degrees` (right-handed: 90 moves what it shows along +x to -z).
+  void set_rotation(float degrees);
+
   bool present() const { return present_; }
   glm::vec3 radiance(glm::vec3 direction) const;
   float pdf(glm::vec3 direction) const;
@@ -47,11 +50,16 @@ class Environment {
 
  private:
   int texel_index(glm::vec2 uv) const;
+  // radiance and pdf of a direction in the image's own frame.
+  glm::vec3 image_radiance(glm::vec3 local) const;
+  float image_pdf(glm::vec3 local) const;
 
   bool present_ = false;
   glm::vec3 uniform_{0.0f};
   std::shared_ptr<const LinearImage> image_;
   glm::vec3 scale_{1.0f};
+  glm::mat3 to_world_{1.0f};  // the rotation, and its inverse (the transpose)
+  glm::mat3 to_image_{1.0f};
   // Texel selection: a cumulative distribution over rows, then over the texels of each row.
   std::vector<float> row_cdf_;       // height + 1
   std::vector<float> column_cdf_;    // height * (width + 1)

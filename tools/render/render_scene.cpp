@@ -294,6 +294,7 @@ RenderScene::RenderScene(const Scene& scene, const AssetPolicy& policy, Diagnost
     if (l.type == LightType::Environment) {
       environment_ =
           l.file.empty() ? Environment(scaled) : Environment(load_image_reference(l.reference, false, policy), scaled);
+      environment_.set_rotation(float(l.rotation_deg));
       continue;
     }
     PunctualLight p;

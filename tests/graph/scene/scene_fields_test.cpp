@@ -80,6 +80,7 @@ TEST_CASE("what a scene file leaves out reads as the initialisers of the scene s
     CHECK(l.inner_cone_deg == light.inner_cone_deg);
     CHECK(l.outer_cone_deg == light.outer_cone_deg);
     CHECK(l.range == light.range);
+    CHECK(l.rotation_deg == light.rotation_deg);
     CHECK(l.angular_radius_deg == light.angular_radius_deg);
   }
 

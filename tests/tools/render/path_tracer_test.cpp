@@ -473,34 +473,34 @@ TEST_CASE("a mesh without uv area under a material whose textures read uv is a w
 
 TEST_CASE("a coarsely tessellated torus shows no black rim where its shading normals face away from the camera") {
   // A 6-segment torus's interpolated normals face away from the camera near its outline, on triangles
-  // the camera sees from the front. Lit by a uniform sky, a white Lambertian surface is never black.
+  // the camera sees from the front. Lit by a uniform sky of radiance 1, a white Lambertian surface there
+  // sees at least part of the sky: it is not black (measured: 0.68 and more). (The torus shades itself elsewhere, so
+  // other pixels may be dark for a reason of their own.)
   const Scene scene = render_scene_text(
       R"({"format": 1, "materials": ["lambert.json"], "cameras": [{"name": "front", "position": [0, 2, 4], "look_at": [0, 0, 0], "yfov": 40, "aspect": 1}], "lights": [{"name": "sky", "type": "environment"}], "objects": [{"name": "ring", "shape": "torus", "major_radius": 1, "minor_radius": 0.5, "material": "white", "segments": 6}]})");
   const render::RenderScene prepared(scene, test::repository_policy());
-  const int size = 48;
+  const int size = 128;
   render::RenderOptions options;
   options.width = options.height = size;
-  options.samples = 16;
+  options.samples = 8;
   options.max_depth = 1;
   const auto image = render::render(prepared, scene.cameras[0], options);
-  int facing_away = 0, covered = 0;
+  int facing_away = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
-      bool all = true;  // every corner of the pixel sees the torus
-      for (int corner = 0; corner < 4 && all; ++corner) {
+      bool away = true;  // the torus, with its normal facing away, at every corner of the pixel
+      for (int corner = 0; corner < 4 && away; ++corner) {
         const auto ray =
             render::camera_ray(scene.cameras[0], size, size, glm::vec2(float(x + corner % 2), float(y + corner / 2)));
         const auto hit = prepared.intersect(ray.origin, ray.direction, 100.0f);
-        all = hit.has_value();
-        if (hit && glm::dot(hit->normal, -ray.direction) < 0.0f) ++facing_away;
+        away = hit && glm::dot(hit->normal, -ray.direction) < 0.0f;
       }
-      if (!all) continue;
-      ++covered;
+      if (!away) continue;
+      ++facing_away;
       CAPTURE(x);
       CAPTURE(y);
-      CHECK(average(image.radiance[size_t(y * size + x)]) > 0.25);
+      CHECK(average(image.radiance[size_t(y * size + x)]) > 0.3);
     }
-  CHECK(covered > size * size / 8);
   CHECK(facing_away > 0);  // the case this is about occurs
 }
 
@@ -553,6 +553,36 @@ TEST_CASE("an exact sphere's uv and tangent are those of its mesh, so textures l
     CHECK(a->uv_per_length == doctest::Approx(b->uv_per_length).epsilon(0.05));
   }
   CHECK(compared > 100);
+}
+
+TEST_CASE("an environment's rotation turns its radiance, its density and its samples about +y") {
+  auto image = std::make_shared<LinearImage>();
+  image->width = 16;
+  image->height = 8;
+  cpu::Pcg32 rng(3, 1);
+  for (int i = 0; i < image->width * image->height; ++i) image->texels.emplace_back(rng.uniform3() + 0.01f, 1.0f);
+  const render::Environment plain(image, vec3(1.0f));
+  render::Environment turned(image, vec3(1.0f));
+  turned.set_rotation(90.0f);
+  // A right-handed quarter turn about +y: x goes to -z, z to x.
+  auto turn = [](vec3 d) { return vec3(d.z, d.y, -d.x); };
+  CHECK(glm::distance(turn(vec3(1.0f, 0.0f, 0.0f)), vec3(0.0f, 0.0f, -1.0f)) < 1e-6f);
+  for (int y = 0; y < image->height; ++y)
+    for (int x = 0; x < image->width; ++x) {
+      // Each texel's centre, where rounding cannot move a direction into a neighbour.
+      const vec3 d = render::equirect_direction(
+          glm::vec2((float(x) + 0.5f) / float(image->width), (float(y) + 0.5f) / float(image->height)));
+      CHECK(turned.radiance(turn(d)) == plain.radiance(d));
+      CHECK(turned.pdf(turn(d)) == doctest::Approx(plain.pdf(d)).epsilon(1e-5));
+      CHECK(turned.radiance(d) != plain.radiance(d));  // the texels are all different
+    }
+  for (int i = 0; i < 100; ++i) {
+    const glm::vec2 u(rng.uniform(), rng.uniform());
+    const auto a = plain.sample(u), b = turned.sample(u);
+    CHECK(glm::distance(b.wi, turn(a.wi)) < 1e-5f);
+    CHECK(b.pdf == a.pdf);
+    CHECK(b.radiance == a.radiance);
+  }
 }
 
 }  // namespace
