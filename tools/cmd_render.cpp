@@ -51,7 +51,8 @@ int run_render(const RenderCliOptions& o) {
   if (o.width < 1 || o.width > kMaxRenderSide) return refuse("--width: expected 1 to 16384 pixels");
   if (o.height < 0 || o.height > kMaxRenderSide) return refuse("--height: expected 1 to 16384 pixels, or 0");
   if (o.samples < 1 || o.samples > kMaxRenderSamples) return refuse("--spp: expected 1 to 1048576 samples per pixel");
-  if (!(o.time >= 0.0 && o.time <= kMaxRenderTime)) return refuse("--time: expected 0 (none) to 604800 seconds");
+  if (!(o.time >= 0.0 && o.time <= kMaxRenderTime))
+    return refuse("--time: expected 0 (none) to " + std::to_string(int(kMaxRenderTime)) + " seconds");
   if (o.max_depth < 1 || o.max_depth > kMaxRenderDepth) return refuse("--max-depth: expected 1 to 1024 surfaces");
   if (o.threads < 0 || o.threads > 1024) return refuse("--threads: expected 0 (one per core) to 1024");
   if (!(std::abs(o.exposure) <= kMaxRenderExposure)) return refuse("--exposure: expected -64 to 64 stops");

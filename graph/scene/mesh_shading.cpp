@@ -47,7 +47,7 @@ void generate_tangents(TriangleMesh& mesh) {
     // "Mathematics for 3D Game Programming and Computer Graphics", sec. 7.8); each triangle's
     // directions count with its area, so slivers do not dominate a vertex.
     double det = d1.x * d2.y - d2.x * d1.y;
-    if (std::abs(det) < 1e-20) continue;
+    if (std::abs(det) < kLeastUvDeterminant) continue;
     glm::dvec3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
     glm::dvec3 dpdv = (e2 * d1.x - e1 * d2.x) / det;
     double area = glm::length(glm::cross(e1, e2));

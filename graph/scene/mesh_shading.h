@@ -5,6 +5,10 @@
 
 namespace lamina {
 
+// A triangle whose uv edges' determinant (twice its area in uv) is below this has no area in uv: its
+// uvs give no tangent direction (generate_tangents), and the renderer warns where textures read them.
+constexpr double kLeastUvDeterminant = 1e-20;
+
 // Area-weighted vertex normals: smooth where triangles share vertices, flat where they do not.
 void generate_normals(TriangleMesh& mesh);
 // Tangents along +u from each triangle's uv derivatives, accumulated per vertex and made

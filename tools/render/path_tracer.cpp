@@ -242,12 +242,13 @@ CameraRay camera_ray(const Camera& camera, int width, int height, vec2 pixel, ve
   const float sy = (1.0f - 2.0f * pixel.y / float(height)) * tan_half;
   CameraRay ray;
   ray.origin = position;
-  ray.direction = glm::normalize(forward + sx * right + sy * up);
+  const vec3 through = forward + sx * right + sy * up;  // reaches the plane at distance 1 in front
+  ray.direction = glm::normalize(through);
   ray.spread = 2.0f * tan_half / float(height);
   if (camera.aperture_radius > 0.0) {
     // The pinhole ray's point on the plane in focus (perpendicular to the view direction), seen from a
     // point of the lens drawn uniformly over its disk.
-    const vec3 focus = position + (forward + sx * right + sy * up) * float(camera.focus());
+    const vec3 focus = position + through * float(camera.focus());
     const float r = float(camera.aperture_radius) * std::sqrt(lens.x);
     const float phi = 2.0f * std::numbers::pi_v<float> * lens.y;
     ray.origin = position + right * (r * std::cos(phi)) + up * (r * std::sin(phi));

@@ -10,6 +10,7 @@
 
 #include "graph/compile.h"
 #include "graph/node_decl.h"
+#include "graph/scene/mesh_shading.h"
 
 namespace lamina::render {
 
@@ -108,7 +109,7 @@ UvCoverage uv_coverage(const TriangleMesh& mesh) {
     if (!(glm::length(glm::cross(e1, e2)) > 0.0)) continue;
     ++c.triangles;
     const glm::dvec2 d1(mesh.uvs[b] - mesh.uvs[a]), d2(mesh.uvs[k] - mesh.uvs[a]);
-    if (std::abs(d1.x * d2.y - d2.x * d1.y) < 1e-20) ++c.without_uv_area;  // generate_tangents' threshold
+    if (std::abs(d1.x * d2.y - d2.x * d1.y) < kLeastUvDeterminant) ++c.without_uv_area;
   }
   return c;
 }
@@ -384,7 +385,7 @@ void RenderScene::sphere_hit(const Instance& instance, float radius, glm::vec3 w
   // dP/du = 2 pi r sin(theta) along_phi and dP/dv = pi r dn/dtheta (at least 1e-3 of the equator's
   // sin(theta), so that the poles' point has a finite footprint).
   const glm::vec3 along_theta(std::cos(theta) * std::sin(phi), -sin_theta, std::cos(theta) * std::cos(phi));
-  const float area = glm::length(glm::cross(linear * along_phi, linear * along_theta)) * two_pi * pi * radius * radius *
+  const float area = glm::length(glm::cross(hit.tangent, linear * along_theta)) * two_pi * pi * radius * radius *
                      std::max(sin_theta, 1e-3f);
   hit.uv_per_length = area > 0.0f ? 1.0f / std::sqrt(area) : 0.0f;
 }
