@@ -65,6 +65,10 @@ TEST_CASE("lamina render refuses a scene it cannot render, with the pointer, and
        "second environment"},
       {scene_with(kCamera, R"({"name": "sky", "type": "environment", "file": "missing.hdr"})"), "", "/lights/0/file",
        "missing.hdr"},
+      {scene_with(R"({"name": "main", "aperture_radius": -0.1})", kSky), "", "/cameras/0/aperture_radius", "-0.1"},
+      {scene_with(R"({"name": "main", "focus_distance": 0})", kSky), "", "/cameras/0/focus_distance", "0"},
+      {scene_with(kCamera, R"({"name": "sky", "type": "environment", "rotation": 400})"), "", "/lights/0/rotation",
+       "400"},
   };
   for (const Case& c : cases) {
     CAPTURE(c.scene);
