@@ -67,4 +67,10 @@ inline constexpr int kMaxStackEntries = 2 * kMaxLobes;
 // glsl` warn about a stack beyond it.
 inline constexpr int kGlslUnrolledEntries = 32;
 
+// substrate/thin_film's film: at most 10 um thick (the spectral fold is right at any thickness, and
+// no colour is left long before), of index 1 to 3 (titanium dioxide, among the densest films, is
+// below 2.9 in the visible).
+inline constexpr double kMaxFilmThicknessNm = 10000.0;
+inline constexpr double kMaxFilmIor = 3.0;
+
 }  // namespace lamina

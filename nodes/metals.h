@@ -4,6 +4,8 @@
 #include <span>
 #include <string_view>
 
+#include "graph/lowering.h"
+#include "graph/node_decl.h"
 #include "graph/value.h"
 
 namespace lamina {
@@ -21,5 +23,11 @@ struct Metal {
 
 std::span<const Metal> metals();
 const Metal* find_metal(std::string_view name);
+
+// A metal-like base's index: `metal` (a named one) or `n` and `k`, declared once for every node
+// with such a base (substrate/conductor, substrate/thin_film), and lowered into the entry's colour0
+// (n) and colour1 (k).
+void add_metal_params(NodeDecl& decl);
+void lower_metal_params(NodeLowering& node);
 
 }  // namespace lamina

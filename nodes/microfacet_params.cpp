@@ -2,7 +2,7 @@
 
 namespace lamina {
 
-void add_microfacet_params(NodeDecl& decl) {
+void add_microfacet_params(NodeDecl& decl, bool fresnel) {
   decl.params.push_back(param("roughness_deg", ValueType::Float)
                             .range(0.0, kMaxRoughnessDeg)
                             .in_unit("degrees")
@@ -19,19 +19,21 @@ void add_microfacet_params(NodeDecl& decl) {
                             .one_of({"beckmann", "blinn", "ggx"})
                             .or_default(std::string("beckmann"))
                             .described("microfacet distribution: Beckmann, normalised Blinn (e = 2/m^2 - 2) or GGX"));
-  decl.params.push_back(
-      param("fresnel", ValueType::Enum)
-          .one_of({"exact", "schlick", "lazanyi"})
-          .or_default(std::string("exact"))
-          .described("Fresnel term F: exact (the Fresnel equations), schlick (Schlick 1994, F0 from the exact term at "
-                     "normal incidence) or lazanyi (Lazanyi and Szirmay-Kalos 2005 as in Elek 2010, App. B)"));
+  if (fresnel)
+    decl.params.push_back(
+        param("fresnel", ValueType::Enum)
+            .one_of({"exact", "schlick", "lazanyi"})
+            .or_default(std::string("exact"))
+            .described(
+                "Fresnel term F: exact (the Fresnel equations), schlick (Schlick 1994, F0 from the exact term at "
+                "normal incidence) or lazanyi (Lazanyi and Szirmay-Kalos 2005 as in Elek 2010, App. B)"));
   decl.alternatives.push_back({{{"roughness_deg"}, {"alpha"}}, true});
 }
 
 void lower_microfacet_params(NodeLowering& node) {
   StackEntry& e = node.entry();
   e.distribution = node.choice("distribution");
-  e.fresnel = node.choice("fresnel");
+  if (find_param(node.decl().params, "fresnel")) e.fresnel = node.choice("fresnel");
   e.degrees = !node.given("alpha");
   e.scalar_y = node.input(e.degrees ? "roughness_deg" : "alpha");
 }

@@ -670,7 +670,16 @@ Module generate(std::span<const Program> programs, const Options& options) {
   for (const std::string& body : bodies) code += body;
   if (options.shader == Options::Shader::Sphere) code += sphere_shader(module.materials.front().prefix);
   if (options.shader == Options::Shader::Plane) code += plane_shader(module.materials.front().prefix);
-  const std::string kernels = needed_kernels(kernel_sources(), code);
+  // A thin film's Fresnel term only in a module with a film (film.glsl, lamina_fresnel_base).
+  bool films = false;
+  for (const Program& p : programs)
+    for (const StackEntry& e : p.stack)
+      films =
+          films || e.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || e.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL;
+  const std::string film_macro = films
+                                     ? "#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n"
+                                     : "#define LAMINA_FILM_FRESNEL(mode, cos_i, film_eta, eta, k, depth) vec3(1.0)\n";
+  const std::string kernels = needed_kernels(kernel_sources(), film_macro + code);
   std::string table;
   if (kernels.find("lamina_albedo_texel") != std::string::npos) table = albedo_table(programs, module);
   s << header(programs, module, options) << "\n";
@@ -679,7 +688,8 @@ Module generate(std::span<const Program> programs, const Options& options) {
   // The arrays of the kernels' composition hold the largest material's stack (or part), those of a
   // blend the most parts and the longest blend; a point (LaminaPoint) holds them.
   s << "#define LAMINA_STACK " << stack_length << "\n#define LAMINA_PARTS " << parts_length << "\n#define LAMINA_BLEND "
-    << blend_length << "\n\n";
+    << blend_length << "\n"
+    << film_macro << "\n";
   s << table << kernels;
   s << code;
   module.source = s.str();

@@ -367,6 +367,16 @@ class Writer {
       extensions["KHR_materials_specular"] =
           Json{{"specularFactor", tidy(p.specular)},
                {"specularColorFactor", tidy_array({p.specular_color.r, p.specular_color.g, p.specular_color.b})}};
+    if (fallback.uses_iridescence) {
+      // KHR_materials_iridescence: without a thickness texture the film is iridescenceThicknessMaximum.
+      Json i{{"iridescenceFactor", tidy(p.iridescence)},
+             {"iridescenceIor", tidy(p.iridescence_ior)},
+             {"iridescenceThicknessMinimum", tidy(fallback.iridescence_thickness_min)},
+             {"iridescenceThicknessMaximum", tidy(p.iridescence_thickness)}};
+      if (fallback.iridescence_thickness)
+        i["iridescenceThicknessTexture"] = Json{{"index", baked(*fallback.iridescence_thickness, 5)}};
+      extensions["KHR_materials_iridescence"] = i;
+    }
     extensions[kExtensionName] = layered_extension(*m, *file);
     for (const auto& [key, value] : extensions.items()) extensions_used_.insert(key);
     gltf_material["extensions"] = extensions;

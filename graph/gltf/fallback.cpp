@@ -23,6 +23,9 @@ PbrParams lerp(const PbrParams& a, const PbrParams& b, float t) {
   p.specular_color = glm::mix(a.specular_color, b.specular_color, t);
   p.clearcoat = std::lerp(a.clearcoat, b.clearcoat, t);
   p.clearcoat_roughness = std::lerp(a.clearcoat_roughness, b.clearcoat_roughness, t);
+  p.iridescence = std::lerp(a.iridescence, b.iridescence, t);
+  p.iridescence_ior = std::lerp(a.iridescence_ior, b.iridescence_ior, t);
+  p.iridescence_thickness = std::lerp(a.iridescence_thickness, b.iridescence_thickness, t);
   return p;
 }
 
@@ -148,11 +151,12 @@ struct Range {
 };
 
 // The fallback from per-texel parameters: factors where a parameter is uniform, textures where it
-// varies. ior and the specular extension have no per-texel form worth baking here; they take the
-// texel-weighted mean.
+// varies. ior, the specular extension and the film's index have no per-texel form worth baking
+// here; they take the texel-weighted mean.
 void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   Range base[3], metallic, roughness, clearcoat, clearcoat_roughness;
-  double ior = 0.0, specular = 0.0;
+  float thinnest = std::numeric_limits<float>::max(), thickest = 0.0f;
+  double ior = 0.0, specular = 0.0, film_ior = 0.0;
   glm::dvec3 specular_color(0.0), base_mean(0.0);
   double metallic_mean = 0.0, roughness_mean = 0.0, clearcoat_mean = 0.0, clearcoat_roughness_mean = 0.0;
   for (const auto& p : texel_params) {
@@ -164,6 +168,9 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
     clearcoat.add(p.clearcoat);
     clearcoat_roughness.add(p.clearcoat_roughness);
     ior += p.ior;
+    film_ior += p.iridescence_ior;
+    thinnest = std::min(thinnest, p.iridescence_thickness);
+    thickest = std::max(thickest, p.iridescence_thickness);
     specular += p.specular;
     specular_color += glm::dvec3(p.specular_color);
     base_mean += glm::dvec3(p.base_color);
@@ -178,6 +185,22 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
   f.specular = static_cast<float>(specular / n);
   f.specular_color = glm::vec3(specular_color / n);
   const size_t texels = texel_params.size();
+  if (out.uses_iridescence) {
+    f.iridescence = 1.0f;
+    f.iridescence_ior = static_cast<float>(film_ior / n);
+    f.iridescence_thickness = thickest;
+    out.iridescence_thickness_min = thickest;
+    // The thickness in bytes from the thinnest film to the thickest, where it varies by more than a byte.
+    if (thickest - thinnest > (thickest + 1.0f) / 510.0f) {
+      BakedImage image{size, 3, std::vector<uint8_t>(texels * 3, 0)};
+      for (size_t t = 0; t < texels; ++t) {
+        image.pixels[t * 3] = 255;
+        image.pixels[t * 3 + 1] = to_byte((texel_params[t].iridescence_thickness - thinnest) / (thickest - thinnest));
+      }
+      out.iridescence_thickness = std::move(image);
+      out.iridescence_thickness_min = thinnest;
+    }
+  }
 
   if (base[0].varies() || base[1].varies() || base[2].varies()) {
     BakedImage image{size, 3, std::vector<uint8_t>(texels * 3)};
@@ -324,6 +347,7 @@ Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
     out.uses_ior = out.uses_ior || fit.uses_ior;
     out.uses_specular = out.uses_specular || fit.uses_specular;
     out.uses_clearcoat = out.uses_clearcoat || fit.uses_clearcoat;
+    out.uses_iridescence = out.uses_iridescence || fit.uses_iridescence;
     widen(out.worst, fit.error);
   };
 
@@ -333,6 +357,7 @@ Fallback fit_fallback(const Program& program, const FallbackOptions& options) {
     FitResult fit = fit_pbr(evaluator, ctx);
     record(fit, ctx.uv, 1);
     out.params = fit.params;
+    out.iridescence_thickness_min = fit.params.iridescence_thickness;
     return out;
   }
 

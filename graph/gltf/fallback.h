@@ -37,10 +37,14 @@ int auto_bake_size(const Program& program);
 struct Fallback {
   // Factors; where a texture carries a parameter its factor is 1 (the texture holds the value).
   PbrParams params;
-  bool uses_ior = false, uses_specular = false, uses_clearcoat = false;
+  bool uses_ior = false, uses_specular = false, uses_clearcoat = false, uses_iridescence = false;
   std::optional<BakedImage> base_color;          // RGB, sRGB-encoded (glTF's baseColorTexture)
   std::optional<BakedImage> metallic_roughness;  // G roughness, B metallic, linear
   std::optional<BakedImage> clearcoat;           // R clearcoat, G clearcoat roughness, linear
+  // KHR_materials_iridescence's iridescenceThicknessTexture: G, linear, from the thinnest film
+  // (iridescence_thickness_min) to the thickest (params.iridescence_thickness); R is 1.
+  std::optional<BakedImage> iridescence_thickness;
+  float iridescence_thickness_min = 0.0f;
   // RGB, linear: the base's tangent-space normal (glTF's normalTexture), baked where the texture
   // nodes tilt the substrates' normals (flakes, glitter facets) by more than one byte's step.
   // lamina's shading frame is glTF's tangent space when the mesh's tangent has w = 1: x along the

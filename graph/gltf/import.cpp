@@ -16,7 +16,7 @@ namespace lamina::gltf {
 namespace {
 
 // Extensions this importer reads; any other one is reported and ignored.
-const std::set<std::string> kReadExtensions{kExtensionName, kIor, kSpecular, kClearcoat};
+const std::set<std::string> kReadExtensions{kExtensionName, kIor, kSpecular, kClearcoat, kIridescence};
 // Extensions that carry no material data (lights, geometry encodings, instancing, metadata): a
 // material import loses nothing by skipping them, so they give a note rather than a warning.
 const std::set<std::string> kNotMaterialExtensions{"KHR_lights_punctual", "KHR_mesh_quantization",

@@ -24,6 +24,7 @@ namespace lamina::gltf {
 inline constexpr const char* kIor = "KHR_materials_ior";
 inline constexpr const char* kSpecular = "KHR_materials_specular";
 inline constexpr const char* kClearcoat = "KHR_materials_clearcoat";
+inline constexpr const char* kIridescence = "KHR_materials_iridescence";
 
 // Where an imported material came from, to give the checker's findings glTF pointers.
 struct Origin {

@@ -131,6 +131,22 @@ void import_pbr(ImportSession& s, size_t index) {
     for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
       if (coat->contains(t)) notes.push_back(name + ": " + t + " is not imported; the factors are used");
   }
+  if (const auto* film = khr_extension(s, gm.extensions, kIridescence, pointer)) {
+    const std::string ep = pointer + "/extensions/" + kIridescence;
+    pbr.iridescence = number(s, *film, "iridescenceFactor", 0.0, ep);
+    pbr.iridescence_ior = number(s, *film, "iridescenceIor", 1.3, ep);
+    const double thinnest = number(s, *film, "iridescenceThicknessMinimum", 100.0, ep);
+    pbr.iridescence_thickness = number(s, *film, "iridescenceThicknessMaximum", 400.0, ep);
+    if (film->contains("iridescenceThicknessTexture")) {
+      // thickness = mix(minimum, maximum, texture.g): without the texture's green channel (a
+      // texture/image node reads colour or its mean), the middle of the range.
+      pbr.iridescence_thickness = 0.5 * (thinnest + pbr.iridescence_thickness);
+      notes.push_back(name + ": iridescenceThicknessTexture is not imported; the film is " +
+                      number_text(pbr.iridescence_thickness) + " nm thick, the middle of its range");
+    }
+    if (film->contains("iridescenceTexture"))
+      notes.push_back(name + ": iridescenceTexture is not imported; iridescenceFactor is used");
+  }
   if (gm.normal_texture.index >= 0) notes.push_back(name + ": normalTexture is not imported");
   if (gm.occlusion_texture.index >= 0) notes.push_back(name + ": occlusionTexture is not imported");
   if (gm.emissive_texture.index >= 0 ||

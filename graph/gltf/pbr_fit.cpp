@@ -90,7 +90,11 @@ class Objective {
     }
     double j = 0.0;
     for (int c = 0; c < 3; ++c) {
-      double x = vv[c] > 0.0 ? std::clamp(-uv[c] / vv[c], 0.0, 1.0) : 0.0;
+      // An iridescent fit keeps its base colour (the film's base; pbr_eval_affine's `a` holds the
+      // film's reflectance at it).
+      double x = p.iridescence > 0.0f ? double(p.base_color[c])
+                 : vv[c] > 0.0        ? std::clamp(-uv[c] / vv[c], 0.0, 1.0)
+                                      : 0.0;
       p.base_color[c] = float(x);
       j += uu[c] + 2.0 * x * uv[c] + x * x * vv[c];
     }
@@ -129,9 +133,10 @@ class Objective {
 // One searched parameter: where it lives in PbrParams, its bounds and its initial step.
 struct Dim {
   float PbrParams::*scalar = nullptr;
-  int color_channel = -1;  // >= 0: specular_color[channel]
+  int color_channel = -1;  // >= 0: a channel of `colour`
   float lo, hi, step;
-  float& of(PbrParams& p) const { return color_channel >= 0 ? p.specular_color[color_channel] : p.*scalar; }
+  glm::vec3 PbrParams::*colour = &PbrParams::specular_color;
+  float& of(PbrParams& p) const { return color_channel >= 0 ? (p.*colour)[color_channel] : p.*scalar; }
 };
 
 const Dim kDimMetallic{&PbrParams::metallic, -1, 0.0f, 1.0f, 0.125f};
@@ -143,6 +148,10 @@ const Dim kDimSpecular{&PbrParams::specular, -1, 0.0f, 1.0f, 0.125f};
 const Dim kDimSpecularR{nullptr, 0, 0.0f, 10.0f, 0.25f};
 const Dim kDimSpecularG{nullptr, 1, 0.0f, 10.0f, 0.25f};
 const Dim kDimSpecularB{nullptr, 2, 0.0f, 10.0f, 0.25f};
+// An iridescent fit's base colour (not solved in closed form: the film's reflectance depends on it).
+const Dim kDimBaseR{nullptr, 0, 0.0f, 1.0f, 0.05f, &PbrParams::base_color};
+const Dim kDimBaseG{nullptr, 1, 0.0f, 1.0f, 0.05f, &PbrParams::base_color};
+const Dim kDimBaseB{nullptr, 2, 0.0f, 1.0f, 0.05f, &PbrParams::base_color};
 
 struct Candidate {
   PbrParams params;
@@ -208,6 +217,27 @@ float relative_albedo_error(glm::vec3 fit, glm::vec3 target) {
   return worst;
 }
 
+// The result's parameters and its errors (FitError) for the best candidate.
+void finish(const Objective& objective, const FitTarget& target, const Candidate& best, FitResult& result) {
+  result.params = best.params;
+  glm::vec3 normal = view_direction(0.0f), grazing = view_direction(80.0f);
+  const glm::vec3 target_normal = target.albedo(normal);
+  result.error.albedo_normal = relative_albedo_error(pbr_albedo(best.params, normal), target_normal);
+  for (int c = 0; c < 3; ++c)
+    if (target_normal[c] > 1.0f)
+      result.error.unreachable_normal =
+          std::max(result.error.unreachable_normal, (target_normal[c] - 1.0f) / target_normal[c]);
+  result.error.albedo_grazing = relative_albedo_error(pbr_albedo(best.params, grazing), target.albedo(grazing));
+  result.error.rms = objective.target_j() > 0.0 ? float(std::sqrt(best.j / objective.target_j())) : 0.0f;
+  FitTarget fitted;
+  fitted.eval = [&](glm::vec3 wi, glm::vec3 wo) { return pbr_eval(best.params, wi, wo); };
+  fitted.albedo = [&](glm::vec3 wo) { return pbr_albedo(best.params, wo); };
+  const glm::vec3 seen = lab_from_linear_srgb(sphere_colour(target));
+  const glm::vec3 shown = lab_from_linear_srgb(sphere_colour(fitted));
+  result.error.lightness = std::abs(shown.x - seen.x);
+  result.error.colour = chromatic_difference(shown, seen);
+}
+
 }  // namespace
 
 FitResult fit_pbr(const FitTarget& target) {
@@ -269,23 +299,29 @@ FitResult fit_pbr(const FitTarget& target) {
     }
   }
 
-  result.params = best.params;
-  glm::vec3 normal = view_direction(0.0f), grazing = view_direction(80.0f);
-  const glm::vec3 target_normal = target.albedo(normal);
-  result.error.albedo_normal = relative_albedo_error(pbr_albedo(best.params, normal), target_normal);
-  for (int c = 0; c < 3; ++c)
-    if (target_normal[c] > 1.0f)
-      result.error.unreachable_normal =
-          std::max(result.error.unreachable_normal, (target_normal[c] - 1.0f) / target_normal[c]);
-  result.error.albedo_grazing = relative_albedo_error(pbr_albedo(best.params, grazing), target.albedo(grazing));
-  result.error.rms = objective.target_j() > 0.0 ? float(std::sqrt(best.j / objective.target_j())) : 0.0f;
-  FitTarget fitted;
-  fitted.eval = [&](glm::vec3 wi, glm::vec3 wo) { return pbr_eval(best.params, wi, wo); };
-  fitted.albedo = [&](glm::vec3 wo) { return pbr_albedo(best.params, wo); };
-  const glm::vec3 seen = lab_from_linear_srgb(sphere_colour(target));
-  const glm::vec3 shown = lab_from_linear_srgb(sphere_colour(fitted));
-  result.error.lightness = std::abs(shown.x - seen.x);
-  result.error.colour = chromatic_difference(shown, seen);
+  finish(objective, target, best, result);
+  return result;
+}
+
+FitResult fit_pbr_iridescent(const FitTarget& target, const PbrParams& film) {
+  Objective objective(target);
+  // The extension's film takes the base's reflection with a phase of 0 or pi; a metal's lies between,
+  // which shifts the film's colours as a thicker or thinner film would. So the thickness is searched
+  // over a quarter wave either way (a whole period of the phase), then with the roughness and the
+  // base colour, whose reflectance sets the extension's second boundary.
+  const float d = film.iridescence_thickness;
+  const float quarter_wave = 550.0f / (4.0f * std::max(film.iridescence_ior, 1.0f));
+  const Dim thickness{&PbrParams::iridescence_thickness, -1, std::max(0.0f, d - quarter_wave), d + quarter_wave,
+                      quarter_wave / 8.0f};
+  std::vector<float> thicknesses;
+  for (int i = -6; i <= 6; ++i)
+    thicknesses.push_back(std::clamp(d + float(i) * quarter_wave / 6.0f, thickness.lo, thickness.hi));
+  Candidate best =
+      grid(objective, film, {{kDimRoughness, {0.03f, 0.06f, 0.1f, 0.2f, 0.3f, 0.5f, 0.8f}}, {thickness, thicknesses}});
+  best = descend(objective, best, {kDimRoughness, thickness, kDimBaseR, kDimBaseG, kDimBaseB});
+  FitResult result;
+  result.uses_iridescence = true;
+  finish(objective, target, best, result);
   return result;
 }
 
@@ -299,6 +335,21 @@ FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx) {
   FitTarget target;
   target.eval = [&](glm::vec3 wi, glm::vec3 wo) { return point.eval(wi, wo); };
   target.albedo = [&](glm::vec3 wo) { return point.albedo(wo); };
+  const cpu::ShadingPoint::Stack stack = point.stack();
+  const kernels::LaminaEntry& top = stack.entries[0];
+  if (top.kind == kernels::LAMINA_SUBSTRATE &&
+      (top.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || top.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL)) {
+    const kernels::LaminaParams& film = stack.params[0];
+    PbrParams start;
+    start.metallic = 1.0f;
+    start.roughness = 0.5f;
+    start.base_color = kernels::conductor_f0(film.n, film.k);
+    start.iridescence = 1.0f;
+    // The extension has one index; the green channel's (at the top, the medium above is air).
+    start.iridescence_ior = film.film_eta.y;
+    start.iridescence_thickness = film.film_depth;
+    return fit_pbr_iridescent(target, start);
+  }
   return fit_pbr(target);
 }
 

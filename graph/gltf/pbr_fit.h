@@ -21,7 +21,18 @@ struct PbrParams {
   glm::vec3 specular_color{1.0f};  // KHR_materials_specular: specularColorFactor
   float clearcoat = 0.0f;          // KHR_materials_clearcoat: clearcoatFactor
   float clearcoat_roughness = 0.0f;
+  float iridescence = 0.0f;              // KHR_materials_iridescence: iridescenceFactor
+  float iridescence_ior = 1.3f;          // iridescenceIor
+  float iridescence_thickness = 400.0f;  // the film's thickness in nm (iridescenceThicknessMaximum)
 };
+
+// KHR_materials_iridescence's F_iridescence ("Implementation Notes", as published): the reflectance
+// of a film of index film_ior and thickness (nm) between a medium of index outside_ior and a base
+// of normal-incidence reflectance base_f0, at the cosine cos1 above the film: Schlick's terms at
+// both boundaries, phases 0 or pi, two orders of Belcour and Barla's 2017 series with their
+// sensitivity. Its optical path takes the film's cosine (the sample renderer's, and the physics);
+// the extension's text writes the cosine above the film.
+glm::vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos1, float thickness, glm::vec3 base_f0);
 
 // The reference BRDF f(wi, wo) without the cosine, lamina's conventions (local frame, z up, both
 // directions away from the surface, 0 below the horizon), composed from lamina's kernels
@@ -33,7 +44,8 @@ struct PbrParams {
 // clearcoat = 0.
 glm::vec3 pbr_eval(const PbrParams& p, glm::vec3 wi, glm::vec3 wo);
 // The same BRDF split as f = a + b * base_color (per channel): every other term is independent of
-// the base colour, which lets a fit solve for it in closed form.
+// the base colour, which lets a fit solve for it in closed form. With iridescence, the metal's
+// film reflectance depends on the base colour otherwise: that part is in `a`, at p.base_color.
 struct PbrAffine {
   glm::vec3 a{0.0f}, b{0.0f};
 };
@@ -61,6 +73,7 @@ struct FitResult {
   PbrParams params;
   FitError error;
   bool uses_ior = false, uses_specular = false, uses_clearcoat = false;  // which extensions help
+  bool uses_iridescence = false;  // KHR_materials_iridescence: the material's surface is a thin film
 };
 
 // Any BRDF a fit can target: f(wi, wo) without the cosine and its directional albedo A(wo).
@@ -85,9 +98,15 @@ struct FitTarget {
 // only when they lower J by more than 5% and by more than 1e-4 of the target's own J (the value with
 // a zero fit), so that plain materials stay plain.
 FitResult fit_pbr(const FitTarget& target);
+// The fit of a material whose surface is a thin film (substrate/thin_film) with
+// KHR_materials_iridescence: `film` holds the film (iridescence 1, its index and thickness), the
+// base's reflectance at normal incidence as the base colour, which the extension's film takes for
+// its base, and metallic 1; the fit searches the roughness alone.
+FitResult fit_pbr_iridescent(const FitTarget& target, const PbrParams& film);
 
 // Fits PbrParams to `material` at shading context `ctx` (textures resolve at ctx.uv), as its flat
-// equivalent where a normal input tilts an entry (Evaluator::bind_untilted). Deterministic.
+// equivalent where a normal input tilts an entry (Evaluator::bind_untilted); with
+// fit_pbr_iridescent where its surface is a thin film at that point. Deterministic.
 FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx);
 
 }  // namespace lamina::gltf

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "graph/limits.h"
 #include "graph/number_text.h"
 
 namespace lamina::gltf {
@@ -57,6 +58,10 @@ Material layered_from_pbr(const std::string& name, const PbrMaterial& pbr, std::
   m.name = name;
   const double metallic = std::clamp(pbr.metallic, 0.0, 1.0);
   const double clearcoat = std::clamp(pbr.clearcoat, 0.0, 1.0);
+  const double iridescence = std::clamp(pbr.iridescence, 0.0, 1.0);
+  if (iridescence > 0.0 && metallic < 1.0)
+    notes.push_back(name +
+                    ": iridescence over the non-metallic part is not imported (lamina's films lie on opaque bases)");
   std::string top;
 
   std::string dielectric;
@@ -106,8 +111,30 @@ Material layered_from_pbr(const std::string& name, const PbrMaterial& pbr, std::
       notes.push_back(name +
                       ": the metal's colour comes from baseColorFactor; lamina cannot derive n and k from a "
                       "texture, so baseColorTexture only tints the non-metallic part");
-    m.nodes.push_back(microfacet_node("metal", "substrate/conductor", {param("n", n), param("k", k)}, pbr.roughness));
+    if (iridescence < 1.0)
+      m.nodes.push_back(microfacet_node("metal", "substrate/conductor", {param("n", n), param("k", k)}, pbr.roughness));
     top = "metal";
+    if (iridescence > 0.0) {
+      // KHR_materials_iridescence: the metal's Fresnel term is mix(F, F_iridescence, factor), a mix
+      // of the bare metal and the same metal under the film (lamina's film is exact where the
+      // extension's takes Schlick's terms and phases of 0 or pi).
+      const double film_ior = std::clamp(pbr.iridescence_ior, 1.0, kMaxFilmIor);
+      if (film_ior != pbr.iridescence_ior)
+        notes.push_back(name + ": iridescenceIor " + text(pbr.iridescence_ior) + " is clamped to " + text(film_ior));
+      m.nodes.push_back(
+          microfacet_node("film", "substrate/thin_film",
+                          {param("n", n), param("k", k),
+                           param("thickness_nm", std::clamp(pbr.iridescence_thickness, 0.0, kMaxFilmThicknessNm)),
+                           param("film_ior", Vec3d{film_ior, film_ior, film_ior})},
+                          pbr.roughness));
+      top = "film";
+      if (iridescence < 1.0) {
+        m.nodes.push_back(Node{"iridescence_mix",
+                               "mix",
+                               {param("weight", iridescence), param("a", link("metal")), param("b", link("film"))}});
+        top = "iridescence_mix";
+      }
+    }
     if (metallic < 1.0) {
       // glTF 2.0 Appendix B: material = mix(dielectric_brdf, metal_brdf, metallic).
       m.nodes.push_back(Node{

@@ -22,6 +22,9 @@ struct PbrMaterial {
   std::array<double, 3> specular_color{1.0, 1.0, 1.0};
   double clearcoat = 0.0;  // KHR_materials_clearcoat clearcoatFactor
   double clearcoat_roughness = 0.0;
+  double iridescence = 0.0;              // KHR_materials_iridescence iridescenceFactor
+  double iridescence_ior = 1.3;          // iridescenceIor
+  double iridescence_thickness = 400.0;  // nm: iridescenceThicknessMaximum, or the texture's mean
   // A texture/image node feeding the diffuse albedo instead of base_color.
   struct Texture {
     std::string file;

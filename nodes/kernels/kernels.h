@@ -14,8 +14,9 @@
 //   LAMINA_STACK          kMaxStackEntries (graph/limits.h), the length of the stack's arrays
 //   LAMINA_PARTS          kMaxLobes, the parts a blend may have (each part has a lobe)
 //   LAMINA_BLEND          kMaxStackEntries, the length of a blend's array of mixes and parts
+//   LAMINA_FILM_FRESNEL   lamina_fresnel_film, a thin film's Fresnel term (film.glsl)
 // The GLSL back end embeds the files in the order included below, after `#define LAMINA_STACK`,
-// `LAMINA_PARTS` and `LAMINA_BLEND` and `precision highp float;` for ES.
+// `LAMINA_PARTS`, `LAMINA_BLEND` and `LAMINA_FILM_FRESNEL` and `precision highp float;` for ES.
 //
 // Everything lands in lamina::kernels, which also sees all of glm (`using namespace glm`), as GLSL
 // code sees its built-ins: kernels::d_ggx(c, a), kernels::vec3, kernels::LAMINA_PI.
@@ -33,6 +34,7 @@
 #define LAMINA_STACK lamina::kMaxStackEntries
 #define LAMINA_PARTS lamina::kMaxLobes
 #define LAMINA_BLEND lamina::kMaxStackEntries
+#define LAMINA_FILM_FRESNEL lamina_fresnel_film
 
 namespace lamina::kernels {
 using namespace glm;
@@ -41,6 +43,7 @@ using namespace glm;
 // The order matters: each file uses only what the files before it define.
 #include "nodes/kernels/common.glsl"
 #include "nodes/kernels/fresnel.glsl"
+#include "nodes/kernels/film.glsl"
 #include "nodes/kernels/microfacet.glsl"
 #include "nodes/kernels/diffuse.glsl"
 #include "nodes/kernels/layer.glsl"
@@ -80,3 +83,4 @@ inline float lamina_albedo_texel(int x, int y) {
 #undef LAMINA_STACK
 #undef LAMINA_PARTS
 #undef LAMINA_BLEND
+#undef LAMINA_FILM_FRESNEL

@@ -41,13 +41,15 @@ LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution
   return torrance_sparrow(fresnel, d, g, l.z, v.z);
 }
 
-// A rough conductor base: Torrance-Sparrow with the conductor Fresnel term at V.H (the one
-// `fresnel_mode` selects: lamina_fresnel_conductor); eta and k are the metal's index relative to
-// the medium above it (Elek's shader uses the absolute one).
-LAMINA_FN vec3 lamina_conductor_eval(vec3 l, vec3 v, vec3 eta, vec3 k, int distribution, int fresnel_mode, float m) {
+// A rough conductor base: Torrance-Sparrow with the base's Fresnel term at V.H (the one
+// `fresnel_mode` selects: lamina_fresnel_base, a conductor's or a thin film's over it); eta and k are
+// the metal's index relative to the medium above it (Elek's shader uses the absolute one), film_eta
+// and depth the film's (film.glsl).
+LAMINA_FN vec3 lamina_conductor_eval(vec3 l, vec3 v, vec3 eta, vec3 k, vec3 film_eta, float depth, int distribution,
+                                     int fresnel_mode, float m) {
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
-  vec3 fresnel = lamina_fresnel_conductor(fresnel_mode, v_dot_h, eta, k);
+  vec3 fresnel = lamina_fresnel_base(fresnel_mode, v_dot_h, eta, k, film_eta, depth);
   float d = d_microfacet_h(distribution, h, m);
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   return torrance_sparrow(fresnel, d, g, l.z, v.z);
@@ -224,12 +226,13 @@ struct LaminaEntry {
 // parameter outside the model's domain). What each member holds:
 //   colour0  lambert, oren_nayar: albedo; conductor: n (absolute)
 //   colour1  conductor: k (absolute)
-//   colour2  layer: the medium's absorption per micrometre
+//   colour2  layer: the medium's absorption per micrometre; thin film: the film's index (absolute)
 //   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, a select's index,
 //               oren_nayar's sigma;
 //            y: roughness (layer, conductor; an angle or a slope, per `degrees`); a select step's
 //               threshold;
-//            z: a layer's medium thickness in micrometres; a select's coverage;
+//            z: a layer's medium thickness in micrometres; a thin film's thickness in nm; a select's
+//               coverage;
 //            w: a select's stack count
 //   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
 //            (tangent space, +z the surface's own normal; a mix's stays (0, 0, 1)); not unit:
@@ -263,6 +266,8 @@ struct LaminaParams {
   vec3 albedo;      // lambert, oren_nayar
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
+  vec3 film_eta;    // thin film: the film's index relative to the medium above, per channel
+  float film_depth; // and its thickness in nm times the medium above's index (film.glsl)
   vec3 normal;      // the entry's frame in the shading frame (lamina_entry_normal): its normal
   vec3 frame_x;     // and its tangents (lamina_to_entry)
   vec3 frame_y;
@@ -279,6 +284,11 @@ struct LaminaParams {
   float spread_own; // and the metal's slope on block C's grid if the boundary spreads wider (lamina_spread_own)
   float arrival_y;  // and its lobe widened by the arrivals' spread there (lamina_arrival_y)
 };
+
+// The Fresnel term of a metal-like base at cosine mu: a conductor's or a thin film's over one.
+LAMINA_FN vec3 lamina_metal_fresnel(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, float mu) {
+  return lamina_fresnel_base(e.fresnel, mu, p.n, p.k, p.film_eta, p.film_depth);
+}
 
 // --- the energy-conserving composition ---------------------------------------------------------
 // Each entry's BRDF is split in two parts: f(l, v) = s(l, v) + c u(l) u(v), where the second, the
@@ -488,7 +498,7 @@ LAMINA_FN vec3 lamina_conductor_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[L
                                           LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i, float mu,
                                           LAMINA_OUT(vec3) a_all, LAMINA_OUT(float) inside) {
   int b = max(entries[i].first, 0);
-  vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
+  vec3 f = lamina_metal_fresnel(entries[b], params[b], mu);
   float whole = 0.0f;
   inside = lamina_conductor_cone_share(entries[b].distribution, params[i].cone_grid, params[i].cone_etas, mu, whole);
   a_all = f * whole;
@@ -678,7 +688,7 @@ LAMINA_FN vec3 lamina_arrival_reflected(LAMINA_IN_ARRAY(LaminaEntry) entries[LAM
   float whole = 0.0f;
   inside = lamina_conductor_cone_share(entries[b].distribution, vec2(params[i].cone_grid.x, params[i].arrival_y),
                                        params[i].cone_etas, mu, whole);
-  vec3 f = lamina_fresnel_conductor(entries[b].fresnel, mu, params[b].n, params[b].k);
+  vec3 f = lamina_metal_fresnel(entries[b], params[b], mu);
   a_all = f * whole;
   return f * inside;
 }
@@ -1132,6 +1142,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.albedo = vec3(0.0f);
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
+    p.film_eta = vec3(1.0f);
+    p.film_depth = 0.0f;
     p.normal = lamina_entry_normal(inputs[i].normal);
     lamina_entry_tangents(p.normal, p.frame_x, p.frame_y);
     p.diffuse = vec3(0.0f);
@@ -1164,6 +1176,9 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       // n stays above 0.001, where the Fresnel equations stay finite.
       p.n = max(inputs[i].colour0, vec3(1.0e-3f)) / p.n_above;
       p.k = inputs[i].colour1 / p.n_above;
+      // A thin film's (colour2 its absolute index, scalars.z its thickness in nm), as film.glsl takes them.
+      p.film_eta = max(inputs[i].colour2, vec3(1.0e-3f)) / p.n_above;
+      p.film_depth = inputs[i].scalars.z * p.n_above;
       float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
       p.m = lamina_widened_slope(own, inputs[i].normal);
     } else {
@@ -1207,7 +1222,8 @@ LAMINA_FN bool lamina_is_microfacet_lobe(LAMINA_IN(LaminaEntry) e) {
 
 // A substrate's BRDF at (l, v) in its own frame.
 LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 l, vec3 v) {
-  if (e.model == LAMINA_SUBSTRATE_CONDUCTOR) return lamina_conductor_eval(l, v, p.n, p.k, e.distribution, e.fresnel, p.m);
+  if (e.model == LAMINA_SUBSTRATE_CONDUCTOR)
+    return lamina_conductor_eval(l, v, p.n, p.k, p.film_eta, p.film_depth, e.distribution, e.fresnel, p.m);
   if (e.model == LAMINA_SUBSTRATE_OREN_NAYAR) return oren_nayar(l, v, p.albedo, p.sigma);
   return lamina_lambert_eval(l, v, p.albedo);
 }
@@ -1467,8 +1483,7 @@ LAMINA_FN vec2 lamina_stack_estimate(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
       if (entries[i].kind == LAMINA_LAYER) {
         estimate = lamina_fresnel_dielectric(entries[i].fresnel, v[i].z, params[i].eta);
       } else if (entries[i].model == LAMINA_SUBSTRATE_CONDUCTOR) {
-        estimate = lamina_luminance(
-            lamina_fresnel_conductor(entries[i].fresnel, v[i].z, params[i].n, params[i].k));
+        estimate = lamina_luminance(lamina_metal_fresnel(entries[i], params[i], v[i].z));
       } else {
         estimate = lamina_luminance(params[i].albedo);
       }

@@ -353,6 +353,11 @@ TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each
       std::string material_code =
           source.substr(std::min(source.find("// texture/image lookups:"), source.find("// ======")));
       std::set<std::string> emitted, used = glsl::identifiers(material_code), declared;
+      // What the back end's macros name (LAMINA_FILM_FRESNEL: the film's kernel, in a module with a film).
+      for (size_t at = source.find("#define LAMINA_"); at != std::string::npos;
+           at = source.find("#define LAMINA_", at + 1))
+        for (const std::string& name : glsl::identifiers(source.substr(at, source.find('\n', at) - at)))
+          used.insert(name);
       for (const glsl::KernelSource& k : disk) {
         for (const glsl::KernelPiece& piece : k.pieces) declared.insert(piece.defines.begin(), piece.defines.end());
         auto chunk = chunks.find(k.name);
@@ -388,6 +393,21 @@ TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each
       for (const std::string& name : emitted)
         CHECK_MESSAGE(used.count(name) == 1, file.filename().string() << ": " << name);
     }
+  }
+}
+
+TEST_CASE("glsl: only a module with a thin film embeds the film's kernel; the others' conductors never inline it") {
+  for (const fs::path& file : glsl_material_files()) {
+    CAPTURE(file);
+    Compiled c = compile_file(file);
+    bool film = false;
+    for (const Program& p : c.programs)
+      for (const StackEntry& e : p.stack)
+        film =
+            film || e.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || e.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL;
+    const std::string source = generate(c.programs, glsl::Target::Glsl330, false);
+    CHECK((source.find("vec3 lamina_fresnel_film(") != std::string::npos) == film);
+    CHECK((source.find("#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n") != std::string::npos) == film);
   }
 }
 

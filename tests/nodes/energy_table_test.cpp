@@ -390,7 +390,8 @@ TEST_CASE("the conductor cone quadrature agrees with a plain integration over th
       // every angle, to float precision.
       const double plain = plain_integral(
           [&](vec3 l) {
-            return double(k::lamina_conductor_eval(l, v, vec3(1.0f), vec3(1.0e4f), distribution, 1, m).x);
+            return double(
+                k::lamina_conductor_eval(l, v, vec3(1.0f), vec3(1.0e4f), vec3(1.0f), 0.0f, distribution, 1, m).x);
           },
           cone);
       CAPTURE(distribution);

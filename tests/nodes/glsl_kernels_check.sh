@@ -85,7 +85,9 @@ void main() {
   ivec4 texels = ivec4(0);
   f += lamina_slope(c, true) + lamina_effective_slope(m, 0.1f, true) + lamina_symmetric_dot(w, v, w);
   s += lamina_interface_eval(w, v, 1.5f, 0, 1, m, vec3(0.1f), 0.5f, lb, vb, carry) + lb + vb + carry;
-  s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), 2, 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
+  s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), vec3(1.5f), 300.0f, 2, 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
+  s += lamina_fresnel_film(LAMINA_FRESNEL_FILM_RGB, c, vec3(1.4f), vec3(0.2f), vec3(3.0f), 300.0f);
+  s += lamina_fresnel_base(LAMINA_FRESNEL_FILM_SPECTRAL, c, vec3(1.5f), vec3(0.0f), vec3(2.4f, 2.5f, 2.6f), 250.0f);
   s += lamina_selection_step(v, 1.5f, 0, vec3(0.1f), 0.5f, f);
   f += lamina_reflection_density(0, m, v, w) + lamina_folded_reflection_density(1, m, v, w);
   s += lamina_with_cosine(w, c);
@@ -214,11 +216,12 @@ for target in 330 450 es300; do
       450) echo "#version 450 core" ;;
       es300) printf '%s\n' "#version 300 es" "precision highp float;" "precision highp int;" ;;
     esac
-    # The one macro the back end defines: the length of the stack's arrays (common.glsl defines
-    # the others).
+    # The macros the back end defines: the lengths of the stack's arrays and the film's Fresnel term
+    # (common.glsl defines the others).
     echo "#define LAMINA_STACK 4"
     echo "#define LAMINA_PARTS 2"
     echo "#define LAMINA_BLEND 3"
+    echo "#define LAMINA_FILM_FRESNEL lamina_fresnel_film"
     # and the dielectric albedo table's reader (energy.glsl): a texture of every combination.
     echo "uniform highp usampler2D lamina_dielectric_albedo_table;"
     etas=$(sed -n 's/^const int LAMINA_ALBEDO_ETAS = \([0-9]*\);.*/\1/p' "$kernels/albedo_grid.glsl")

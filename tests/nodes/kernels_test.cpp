@@ -907,7 +907,7 @@ TEST_CASE("kernels: the interface step carries T a t and returns the interface's
                                 : k::fresnel_lazanyi(vh, n, kk);
     const vec3 want =
         k::torrance_sparrow(fr, k::d_microfacet_h(2, h, m), k::g_microfacet(2, l.z, v.z, h.z, vh, m), l.z, v.z);
-    CHECK_VEC3_NEAR(k::lamina_conductor_eval(l, v, n, kk, 2, mode, m), want, 0.0f);
+    CHECK_VEC3_NEAR(k::lamina_conductor_eval(l, v, n, kk, vec3(1.0f), 0.0f, 2, mode, m), want, 0.0f);
   }
 }
 

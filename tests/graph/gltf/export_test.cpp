@@ -230,6 +230,30 @@ TEST_CASE("glTF export: textured materials get baked fallback textures, uniform 
   CHECK(cj["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"]["index"] == 0);
 }
 
+TEST_CASE(
+    "glTF export: a thin-film surface writes KHR_materials_iridescence, with a thickness texture where it varies") {
+  // soap_film: a film of index 1.334 (green) whose thickness a noise spreads over 100 to 900 nm.
+  const auto file = test::source_dir() / "examples/materials/soap_film.json";
+  gltf::Export out = gltf::export_scene(sheet_of(file), "film.glb", quick());
+  const Json j = glb_json(out.files[0].bytes);
+  const Json& film = find_material(j, "soap_film")["extensions"]["KHR_materials_iridescence"];
+  CHECK(film["iridescenceFactor"] == 1.0);
+  CHECK(film["iridescenceIor"].get<double>() == doctest::Approx(1.334).epsilon(1e-6));
+  const double thinnest = film["iridescenceThicknessMinimum"], thickest = film["iridescenceThicknessMaximum"];
+  // The fit moves each state's thickness by less than a quarter wave (550 / (4 x 1.334) nm) to match
+  // the colours the extension's cruder film gives.
+  CHECK(thinnest >= 100.0 - 104.0);
+  CHECK(thickest <= 900.0 + 104.0);
+  CHECK(thinnest < thickest);
+  REQUIRE(film.contains("iridescenceThicknessTexture"));
+  const auto used = j["extensionsUsed"].get<std::vector<std::string>>();
+  CHECK(std::find(used.begin(), used.end(), "KHR_materials_iridescence") != used.end());
+  // Materials without a film write none.
+  const auto brass = test::source_dir() / "examples/materials/brass.json";
+  const Json plain = glb_json(gltf::export_scene(sheet_of(brass), "brass.glb", quick()).files[0].bytes);
+  CHECK_FALSE(find_material(plain, "brass")["extensions"].contains("KHR_materials_iridescence"));
+}
+
 TEST_CASE("glTF export: a coat tilted by a texture gets a clearcoatNormalTexture, its flat base no normalTexture") {
   Scene sheet = sheet_of(test::source_dir() / "tests/data/gltf/tilted_coat.json");
   gltf::ExportOptions options = quick();

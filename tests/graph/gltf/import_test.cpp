@@ -90,8 +90,9 @@ bool has_diagnostic(const std::vector<Diagnostic>& list, const std::string& poin
 }  // namespace
 
 TEST_CASE("import: the hand-made glTF files give graphs that pass the checker, with no warnings") {
-  for (const char* name : {"core_metallic_roughness.gltf", "ior.gltf", "specular.gltf", "clearcoat.gltf",
-                           "base_color_texture.gltf", "base_color_texture.glb", "lamina_layered.gltf"}) {
+  for (const char* name :
+       {"core_metallic_roughness.gltf", "ior.gltf", "specular.gltf", "clearcoat.gltf", "iridescence.gltf",
+        "base_color_texture.gltf", "base_color_texture.glb", "lamina_layered.gltf"}) {
     const std::string file = name;
     CAPTURE(file);
     auto imported = import_file(name);
@@ -179,6 +180,32 @@ TEST_CASE("import: KHR_materials_clearcoat adds a dielectric layer on top, mixed
   CHECK(link(node(metal, "clearcoat_mix"), "b") == Link{"coated", ""});
   CHECK(number(node(metal, "clearcoat"), "alpha") == doctest::Approx(0.0));
   check_color(color(node(metal, "metal"), "k"), {6.0, 6.0, 6.0});  // F0 0.9: 2 sqrt(0.9 / 0.1)
+}
+
+TEST_CASE("import: KHR_materials_iridescence puts the metal under a thin film, mixed by a partial factor") {
+  auto imported = import_file("iridescence.gltf");
+  REQUIRE(imported.diagnostics.ok());
+  const Material& whole = imported.result.document.materials.at(0);
+  CHECK(ids(whole) == std::vector<std::string>{"film"});
+  CHECK(whole.surface == Link{"film", ""});
+  CHECK(number(node(whole, "film"), "thickness_nm") == doctest::Approx(300.0));
+  check_color(color(node(whole, "film"), "film_ior"), {1.8, 1.8, 1.8});
+  check_color(color(node(whole, "film"), "k"), {6.0, 2 * std::sqrt(0.8 / 0.2), 2 * std::sqrt(0.6 / 0.4)});
+  CHECK(number(node(whole, "film"), "alpha") == doctest::Approx(0.04));
+
+  // Half: the bare metal and the filmed one, mixed; the thickness texture's range gives its middle,
+  // and the index beyond lamina's range is clamped, each with a note.
+  const Material& half = imported.result.document.materials.at(1);
+  CHECK(ids(half) == std::vector<std::string>{"metal", "film", "iridescence_mix"});
+  CHECK(half.surface == Link{"iridescence_mix", ""});
+  CHECK(number(node(half, "iridescence_mix"), "weight") == doctest::Approx(0.5));
+  CHECK(link(node(half, "iridescence_mix"), "a") == Link{"metal", ""});
+  CHECK(link(node(half, "iridescence_mix"), "b") == Link{"film", ""});
+  CHECK(number(node(half, "film"), "thickness_nm") == doctest::Approx(400.0));
+  check_color(color(node(half, "film"), "film_ior"), {3.0, 3.0, 3.0});
+  for (const char* note : {"iridescenceThicknessTexture is not imported", "iridescenceIor 4.0 is clamped to 3.0"})
+    CHECK(std::any_of(imported.result.notes.begin(), imported.result.notes.end(),
+                      [&](const std::string& n) { return n.find(note) != std::string::npos; }));
 }
 
 TEST_CASE("import: baseColorTexture becomes an image node with the extracted PNG, in .gltf and .glb alike") {

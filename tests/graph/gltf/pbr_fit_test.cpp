@@ -280,6 +280,12 @@ constexpr Limits kConductorBase{0.26f, 0.48f, 0.44f};
 // its whole chroma (gold_metallic_paint's grey-white fallback: 12.5, appearance_test.cpp).
 constexpr float kLightnessLimit = 7.0f;
 constexpr float kColourLimit = 7.0f;
+// A thin-film surface's fit (KHR_materials_iridescence) is held to what a person sees and to its
+// RMS: the extension's film (Schlick's terms without polarisation, phases of 0 or pi) is a coarse
+// copy of lamina's exact one, and a dark film's albedo, off by a few hundredths, is off by
+// hundreds of percent at 80 degrees (a soap film: 0.2 where lamina's reflects 0.009 in blue).
+constexpr float kFilmRms = 0.8f;
+constexpr float kFilmColourLimit = 10.0f;
 
 }  // namespace
 
@@ -322,20 +328,30 @@ TEST_CASE("fit_pbr fits every texture state of every bundled example within its 
                     "%.4f  %.4f   %.4f  %.4f  %4.1f %4.1f\n",
                     name.c_str(), state.uv.x, state.uv.y, conductor ? "metal" : "diff", p.base_color.x, p.base_color.y,
                     p.base_color.z, p.metallic, p.roughness, p.ior, p.specular, p.clearcoat, p.clearcoat_roughness,
-                    fit.uses_clearcoat ? 'c' : '-', fit.uses_ior ? 'i' : '-', fit.uses_specular ? 's' : '-',
-                    fit.error.albedo_normal, unreachable_normal, fit.error.albedo_grazing, unreachable_grazing,
-                    fit.error.rms, fit.error.lightness, fit.error.colour);
+                    fit.uses_clearcoat ? 'c' : '-',
+                    fit.uses_ior           ? 'i'
+                    : fit.uses_iridescence ? 'f'
+                                           : '-',
+                    fit.uses_specular ? 's' : '-', fit.error.albedo_normal, unreachable_normal,
+                    fit.error.albedo_grazing, unreachable_grazing, fit.error.rms, fit.error.lightness,
+                    fit.error.colour);
       table += line;
       INFO(line);
       const Limits& limits = conductor ? kConductorBase : kDiffuseBase;
       // A state whose stack a normal input tilts (a flake, a glitter facet) is fitted as its flat
       // equivalent (the fallback's normal texture puts the tilt back: the test below), and its
       // errors are the fit's against that, held to the same limits as every other state.
-      CHECK(fit.error.albedo_normal <= unreachable_normal + limits.normal);
-      CHECK(fit.error.albedo_grazing <= unreachable_grazing + limits.grazing);
-      CHECK(fit.error.rms <= limits.rms);
-      CHECK(fit.error.lightness <= kLightnessLimit);
-      CHECK(fit.error.colour <= kColourLimit);
+      if (fit.uses_iridescence) {
+        CHECK(fit.error.rms <= kFilmRms);
+        CHECK(fit.error.lightness <= kLightnessLimit);
+        CHECK(fit.error.colour <= kFilmColourLimit);
+      } else {
+        CHECK(fit.error.albedo_normal <= unreachable_normal + limits.normal);
+        CHECK(fit.error.albedo_grazing <= unreachable_grazing + limits.grazing);
+        CHECK(fit.error.rms <= limits.rms);
+        CHECK(fit.error.lightness <= kLightnessLimit);
+        CHECK(fit.error.colour <= kColourLimit);
+      }
       // The reported unreachable share is (A - 1) / A of the material's own albedo at normal incidence.
       CHECK(fit.error.unreachable_normal == doctest::Approx(unreachable_normal).epsilon(1e-4));  // 0 for most
     }

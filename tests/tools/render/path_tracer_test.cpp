@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "graph/cpu/pcg32.h"
+#include "graph/cpu_test_support.h"
 #include "graph/document.h"
 #include "graph/load.h"
 #include "test_support.h"
