@@ -123,11 +123,23 @@ class RandomStacks {
       const std::string metal = metals[pick(5)];
       const std::string slope = roughness();
       node(id, R"("type": "substrate/conductor", "metal": ")" + metal + "\", " + slope + microfacet() + tilt);
-    } else {
+    } else if (u < 0.9) {
       const std::string n = colour(0.1, 3.0);
       const std::string k = colour(0.0, 8.0);
       const std::string slope = roughness();
       node(id, R"("type": "substrate/conductor", "n": )" + n + R"(, "k": )" + k + ", " + slope + microfacet() + tilt);
+    } else {
+      // A thin film over a metal or a dielectric (k from 0), of any thickness up to 2 um.
+      static const char* integrations[] = {"spectral", "rgb"};
+      const std::string n = colour(0.1, 3.0);
+      const std::string k = colour(0.0, 8.0);
+      const std::string thickness = scalar(0.0, 2000.0);
+      const std::string film = colour(1.0, 3.0);
+      const std::string slope = roughness();
+      const std::string integration = integrations[pick(2)];
+      node(id, R"("type": "substrate/thin_film", "n": )" + n + R"(, "k": )" + k + R"(, "thickness_nm": )" + thickness +
+                   R"(, "film_ior": )" + film + R"(, "integration": ")" + integration + "\", " + slope +
+                   distribution() + tilt);
     }
     return id;
   }
@@ -159,11 +171,14 @@ class RandomStacks {
   }
 
   std::string microfacet() {
-    static const char* distributions[] = {"beckmann", "blinn", "ggx"};
     static const char* fresnels[] = {"exact", "schlick", "lazanyi"};
-    const std::string distribution = distributions[pick(3)];
+    const std::string with_distribution = distribution();
     const std::string fresnel = fresnels[pick(3)];
-    return R"(, "distribution": ")" + distribution + R"(", "fresnel": ")" + fresnel + "\"";
+    return with_distribution + R"(, "fresnel": ")" + fresnel + "\"";
+  }
+  std::string distribution() {
+    static const char* distributions[] = {"beckmann", "blinn", "ggx"};
+    return std::string(R"(, "distribution": ")") + distributions[pick(3)] + "\"";
   }
 
   // A float in [lo, hi]: a constant, or one time in five a checker's value remapped into a random

@@ -207,7 +207,46 @@ void BM_eval_textured_noise_4_octaves(benchmark::State& s) { eval_textured(s, no
 void BM_eval_textured_voronoi(benchmark::State& s) { eval_textured(s, voronoi_textured()); }
 void BM_eval_textured_glitter_select_of_4(benchmark::State& s) { eval_textured(s, glitter_select()); }
 
+// The optics' nodes against a dielectric layer over the same base (the single lobe's aluminium), in
+// the default (energy-conserving) model: a 300 nm film of index 1.5 over it, each integration.
+const char* kFilmOrLayer = R"({"format": 1, "materials": [{"name": "film", "surface": "SURFACE", "nodes": [
+    {"id": "coat", "type": "layer", "interface": "@varnish", "base": "@metal"},
+    {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 1.0},
+    {"id": "metal", "type": "substrate/conductor", "metal": "aluminium", "roughness_deg": 12.0},
+    {"id": "film", "type": "substrate/thin_film", "metal": "aluminium", "roughness_deg": 12.0, "thickness_nm": 300.0,
+     "film_ior": [1.5, 1.5, 1.5], "integration": "INTEGRATION"}]}]})";
+
+lamina::cpu::Evaluator film_or_layer(const char* surface, const char* integration) {
+  using lamina::glsl::replace_all;
+  return evaluator_from_text(
+      replace_all(replace_all(kFilmOrLayer, "SURFACE", surface), "INTEGRATION", integration).c_str());
+}
+const lamina::cpu::Evaluator& dielectric_layer() {
+  static const auto e = film_or_layer("@coat", "spectral");
+  return e;
+}
+const lamina::cpu::Evaluator& thin_film_spectral() {
+  static const auto e = film_or_layer("@film", "spectral");
+  return e;
+}
+const lamina::cpu::Evaluator& thin_film_rgb() {
+  static const auto e = film_or_layer("@film", "rgb");
+  return e;
+}
+
+void BM_eval_optics_dielectric_layer(benchmark::State& s) { eval_scalar(s, dielectric_layer()); }
+void BM_eval_optics_thin_film_spectral(benchmark::State& s) { eval_scalar(s, thin_film_spectral()); }
+void BM_eval_optics_thin_film_rgb(benchmark::State& s) { eval_scalar(s, thin_film_rgb()); }
+void BM_sample_optics_dielectric_layer(benchmark::State& s) { sample_scalar(s, dielectric_layer()); }
+void BM_sample_optics_thin_film_spectral(benchmark::State& s) { sample_scalar(s, thin_film_spectral()); }
+
 }  // namespace
+
+BENCHMARK(BM_eval_optics_dielectric_layer);
+BENCHMARK(BM_eval_optics_thin_film_spectral);
+BENCHMARK(BM_eval_optics_thin_film_rgb);
+BENCHMARK(BM_sample_optics_dielectric_layer);
+BENCHMARK(BM_sample_optics_thin_film_spectral);
 
 BENCHMARK(BM_eval_textured_untextured_stack);
 BENCHMARK(BM_eval_textured_checker);
