@@ -396,7 +396,7 @@ TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each
   }
 }
 
-TEST_CASE("glsl: only a module with a thin film embeds the film's kernel; the others' conductors never inline it") {
+TEST_CASE("glsl: only a module with a thin film embeds the film's kernel, so the others' conductors never inline it") {
   for (const fs::path& file : glsl_material_files()) {
     CAPTURE(file);
     Compiled c = compile_file(file);
