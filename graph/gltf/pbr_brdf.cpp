@@ -77,12 +77,12 @@ glm::vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos1, flo
   glm::vec3 out = r12 + rs, cm = rs - t121;
   for (int m = 1; m <= 2; ++m) {
     cm *= root;
+    // Each channel's phase: phi21 and the base's (0 over a denser base, pi under a rarer one); the
+    // sensitivity at each of the two, once.
+    const glm::vec3 denser = iridescence_sensitivity(float(m) * opd, float(m) * phi21);
+    const glm::vec3 rarer = iridescence_sensitivity(float(m) * opd, float(m) * (phi21 + k::LAMINA_PI));
     glm::vec3 s;
-    for (int c = 0; c < 3; ++c) {
-      // Each channel's phase: phi21 and the base's (0 over a denser base, pi under a rarer one).
-      const float phi = phi21 + (base_ior[c] < film ? k::LAMINA_PI : 0.0f);
-      s[c] = iridescence_sensitivity(float(m) * opd, float(m) * phi)[c];
-    }
+    for (int c = 0; c < 3; ++c) s[c] = base_ior[c] < film ? rarer[c] : denser[c];
     out += cm * 2.0f * s;
   }
   return glm::max(out, glm::vec3(0.0f));
@@ -118,15 +118,20 @@ PbrAffine pbr_eval_affine(const PbrParams& p, glm::vec3 wi, glm::vec3 wo) {
     // Fresnel term is), the metal's its base colour.
     const float cos1 = std::abs(glm::dot(wo, h));
     const float t = p.iridescence;
-    const glm::vec3 film_dielectric =
-        iridescence_fresnel(1.0f, p.iridescence_ior, cos1, p.iridescence_thickness, f0_coloured);
-    dielectric_fresnel = glm::mix(dielectric_fresnel, film_dielectric * p.specular, t);
-    dielectric_a = dielectric_fresnel * specular;
-    dielectric_b = k::lambert(glm::vec3(1.0f - max_value(dielectric_fresnel)));
-    const glm::vec3 film_metal =
-        iridescence_fresnel(1.0f, p.iridescence_ior, cos1, p.iridescence_thickness, p.base_color);
-    metal_a = metal_a * (1.0f - t) + film_metal * (specular * t);
-    metal_b *= 1.0f - t;
+    // Each film only where its BRDF has weight (the fit's films are wholly metallic).
+    if (p.metallic < 1.0f) {
+      const glm::vec3 film_dielectric =
+          iridescence_fresnel(1.0f, p.iridescence_ior, cos1, p.iridescence_thickness, f0_coloured);
+      dielectric_fresnel = glm::mix(dielectric_fresnel, film_dielectric * p.specular, t);
+      dielectric_a = dielectric_fresnel * specular;
+      dielectric_b = k::lambert(glm::vec3(1.0f - max_value(dielectric_fresnel)));
+    }
+    if (p.metallic > 0.0f) {
+      const glm::vec3 film_metal =
+          iridescence_fresnel(1.0f, p.iridescence_ior, cos1, p.iridescence_thickness, p.base_color);
+      metal_a = metal_a * (1.0f - t) + film_metal * (specular * t);
+      metal_b *= 1.0f - t;
+    }
   }
 
   // material = mix(dielectric_brdf, metal_brdf, metallic) (sec. B.3.5).
