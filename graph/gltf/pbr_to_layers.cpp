@@ -138,7 +138,7 @@ Material layered_from_pbr(const std::string& name, const PbrMaterial& pbr, std::
     if (metallic < 1.0) {
       // glTF 2.0 Appendix B: material = mix(dielectric_brdf, metal_brdf, metallic).
       m.nodes.push_back(Node{
-          "metallic_mix", "mix", {param("weight", metallic), param("a", link(dielectric)), param("b", link("metal"))}});
+          "metallic_mix", "mix", {param("weight", metallic), param("a", link(dielectric)), param("b", link(top))}});
       top = "metallic_mix";
     }
   }

@@ -203,7 +203,13 @@ TEST_CASE("import: KHR_materials_iridescence puts the metal under a thin film, m
   CHECK(link(node(half, "iridescence_mix"), "b") == Link{"film", ""});
   CHECK(number(node(half, "film"), "thickness_nm") == doctest::Approx(400.0));
   check_color(color(node(half, "film"), "film_ior"), {3.0, 3.0, 3.0});
-  for (const char* note : {"iridescenceThicknessTexture is not imported", "iridescenceIor 4.0 is clamped to 3.0"})
+  // Half metallic: the film is the metal part of the metallic mix; the dielectric part has none.
+  const Material& half_metal = imported.result.document.materials.at(2);
+  CHECK(half_metal.surface == Link{"metallic_mix", ""});
+  CHECK(link(node(half_metal, "metallic_mix"), "b") == Link{"film", ""});
+  CHECK(number(node(half_metal, "film"), "thickness_nm") == doctest::Approx(250.0));
+  for (const char* note : {"iridescenceThicknessTexture is not imported", "iridescenceIor 4.0 is clamped to 3.0",
+                           "iridescence over the non-metallic part is not imported"})
     CHECK(std::any_of(imported.result.notes.begin(), imported.result.notes.end(),
                       [&](const std::string& n) { return n.find(note) != std::string::npos; }));
 }
