@@ -673,9 +673,7 @@ Module generate(std::span<const Program> programs, const Options& options) {
   // A thin film's Fresnel term only in a module with a film (film.glsl, lamina_fresnel_base).
   bool films = false;
   for (const Program& p : programs)
-    for (const StackEntry& e : p.stack)
-      films =
-          films || e.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || e.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL;
+    for (const StackEntry& e : p.stack) films = films || kernels::lamina_is_film(e.fresnel);
   const std::string film_macro = films
                                      ? "#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n"
                                      : "#define LAMINA_FILM_FRESNEL(mode, cos_i, film_eta, eta, k, depth) vec3(1.0)\n";

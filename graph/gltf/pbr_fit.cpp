@@ -337,8 +337,7 @@ FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx) {
   target.albedo = [&](glm::vec3 wo) { return point.albedo(wo); };
   const cpu::ShadingPoint::Stack stack = point.stack();
   const kernels::LaminaEntry& top = stack.entries[0];
-  if (top.kind == kernels::LAMINA_SUBSTRATE &&
-      (top.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || top.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL)) {
+  if (top.kind == kernels::LAMINA_SUBSTRATE && kernels::lamina_is_film(top.fresnel)) {
     const kernels::LaminaParams& film = stack.params[0];
     PbrParams start;
     start.metallic = 1.0f;

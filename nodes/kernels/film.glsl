@@ -25,6 +25,11 @@
 const int LAMINA_FRESNEL_FILM_RGB = 3;
 const int LAMINA_FRESNEL_FILM_SPECTRAL = 4;
 
+// Whether a Fresnel mode is one of a thin film's.
+LAMINA_FN bool lamina_is_film(int mode) {
+  return mode == LAMINA_FRESNEL_FILM_RGB || mode == LAMINA_FRESNEL_FILM_SPECTRAL;
+}
+
 // Complex arithmetic on vec2 (real, imaginary).
 LAMINA_FN vec2 lamina_cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
 LAMINA_FN vec2 lamina_cdiv(vec2 a, vec2 b) {
@@ -188,7 +193,6 @@ LAMINA_FN vec3 lamina_fresnel_film(int mode, float cos_i, vec3 film_eta, vec3 et
 // otherwise, so that no other module inlines the film's code wherever a conductor's Fresnel term is
 // taken (it tripled llvmpipe's compile times of every material with a metal).
 LAMINA_FN vec3 lamina_fresnel_base(int mode, float cos_i, vec3 eta, vec3 k, vec3 film_eta, float depth) {
-  if (mode == LAMINA_FRESNEL_FILM_RGB || mode == LAMINA_FRESNEL_FILM_SPECTRAL)
-    return LAMINA_FILM_FRESNEL(mode, cos_i, film_eta, eta, k, depth);
+  if (lamina_is_film(mode)) return LAMINA_FILM_FRESNEL(mode, cos_i, film_eta, eta, k, depth);
   return lamina_fresnel_conductor(mode, cos_i, eta, k);
 }

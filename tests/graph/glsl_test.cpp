@@ -402,9 +402,7 @@ TEST_CASE("glsl: only a module with a thin film embeds the film's kernel, so the
     Compiled c = compile_file(file);
     bool film = false;
     for (const Program& p : c.programs)
-      for (const StackEntry& e : p.stack)
-        film =
-            film || e.fresnel == kernels::LAMINA_FRESNEL_FILM_RGB || e.fresnel == kernels::LAMINA_FRESNEL_FILM_SPECTRAL;
+      for (const StackEntry& e : p.stack) film = film || kernels::lamina_is_film(e.fresnel);
     const std::string source = generate(c.programs, glsl::Target::Glsl330, false);
     CHECK((source.find("vec3 lamina_fresnel_film(") != std::string::npos) == film);
     CHECK((source.find("#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n") != std::string::npos) == film);
