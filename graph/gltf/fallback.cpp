@@ -190,7 +190,8 @@ void bake(const std::vector<PbrParams>& texel_params, int size, Fallback& out) {
     f.iridescence_ior = static_cast<float>(film_ior / n);
     f.iridescence_thickness = thickest;
     out.iridescence_thickness_min = thickest;
-    // The thickness in bytes from the thinnest film to the thickest, where it varies by more than a byte.
+    // A thickness texture, from the thinnest film to the thickest, where the two differ by more than
+    // half a byte's step of a range from 0 to the thickest (1 nm added so that a film of 0 nm counts).
     if (thickest - thinnest > (thickest + 1.0f) / 510.0f) {
       BakedImage image{size, 3, std::vector<uint8_t>(texels * 3, 0)};
       for (size_t t = 0; t < texels; ++t) {
