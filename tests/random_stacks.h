@@ -113,8 +113,10 @@ class RandomStacks {
     const std::string id = fresh("base");
     const std::string tilt = normal();
     const double u = uniform(0.0, 1.0);
-    if (u < 0.3) {
+    if (u < 0.22) {
       node(id, R"("type": "substrate/lambert", "albedo": )" + albedo() + tilt);
+    } else if (u < 0.3) {
+      node(id, R"("type": "substrate/fluorescent", )" + fluorescence() + tilt);
     } else if (u < 0.55) {
       const std::string a = albedo();
       node(id, R"("type": "substrate/oren_nayar", "albedo": )" + a + R"(, "sigma": )" + scalar(0.0, 1.2) + tilt);
@@ -142,6 +144,22 @@ class RandomStacks {
                    distribution() + tilt);
     }
     return id;
+  }
+
+  // A fluorescent base's albedo and shifts: constants within the energy bound (each channel returns at
+  // most what it receives, as the checker demands), or, one time in four, a Voronoi cell's colour as
+  // albedo with shifts that may exceed it, which the kernels scale back.
+  std::string fluorescence() {
+    if (chance(0.25))
+      return R"("albedo": "@)" + voronoi() + R"(.color", "green_to_red": )" + scalar(0.0, 1.0) +
+             R"(, "blue_to_red": )" + scalar(0.0, 1.0) + R"(, "blue_to_green": )" + scalar(0.0, 1.0);
+    const double r = uniform(0.0, 1.0), g = uniform(0.0, 1.0), b = uniform(0.0, 1.0);
+    const double green_to_red = 0.999 * uniform(0.0, 1.0 - g);
+    const double blue_out = 0.999 * uniform(0.0, 1.0 - b);
+    const double to_red = uniform(0.0, 1.0);
+    return R"("albedo": [)" + number(r) + ", " + number(g) + ", " + number(b) + R"(], "green_to_red": )" +
+           number(green_to_red) + R"(, "blue_to_red": )" + number(blue_out * to_red) + R"(, "blue_to_green": )" +
+           number(blue_out * (1.0 - to_red));
   }
 
   // One interface or substrate in four is tilted (from the second stream): by a constant normal up

@@ -173,6 +173,13 @@ template <int Count>
                                                            const k::LaminaParams* params, vec3 wi, vec3 wo) {
   return k::lamina_stack_eval_conserving(Count > 0 ? Count : count, entries, params, wi, wo);
 }
+// Light of a colour (lamina_stack_glows): off the hot path, for any count.
+[[gnu::noinline]] vec3 stack_response(int model, int count, const k::LaminaEntry* entries,
+                                      const k::LaminaParams* params, vec3 wi, vec3 wo, vec3 light, bool adjoint) {
+  if (model == k::LAMINA_MODEL_ENERGY_CONSERVING)
+    return k::lamina_stack_response_conserving(count, entries, params, wi, wo, light, adjoint);
+  return k::lamina_stack_response(count, entries, params, wi, wo, light, adjoint);
+}
 [[gnu::flatten, gnu::noinline]] void stack_select(int count, const k::LaminaEntry* entries,
                                                   const k::LaminaParams* params, vec3 wo, Selection& s) {
   k::lamina_stack_select(count, entries, params, wo, s.weight.data(), s.v.data(), s.valid.data());
@@ -209,6 +216,10 @@ struct Local {
                   : stack_eval_conserving<0>(count, entries, params, wi, wo);
     return bare ? stack_eval<1>(count, entries, params, wi, wo) : stack_eval<0>(count, entries, params, wi, wo);
   }
+  vec3 respond(vec3 wi, vec3 wo, vec3 light, bool adjoint) const {
+    return stack_response(model, count, entries, params, wi, wo, light, adjoint);
+  }
+  bool glows() const { return k::lamina_stack_glows(count, entries); }
   void select(vec3 wo, Selection& s) const { stack_select(count, entries, params, wo, s); }
   float pdf(const Selection& s, vec3 wi, vec3 wo) const { return stack_pdf(count, entries, params, s, wi, wo); }
   float pdf(vec3 wi, vec3 wo) const {
@@ -254,6 +265,17 @@ Local Evaluator::fixed_queries() const {
 }
 
 vec3 ShadingPoint::eval(vec3 wi, vec3 wo) const { return queries().eval(local(wi), local(wo)); }
+
+vec3 ShadingPoint::eval(vec3 wi, vec3 wo, vec3 light) const {
+  return queries().respond(local(wi), local(wo), light, false);
+}
+
+vec3 ShadingPoint::eval_adjoint(vec3 wi, vec3 wo, vec3 weight) const {
+  // F^T(wi, wo) is F with the directions exchanged and every matrix transposed (stack.glsl).
+  return queries().respond(local(wo), local(wi), weight, true);
+}
+
+bool ShadingPoint::fluorescent() const { return queries().glows(); }
 
 float ShadingPoint::pdf(vec3 wi, vec3 wo) const { return queries().pdf(local(wi), local(wo)); }
 
@@ -303,7 +325,14 @@ LobeFlags ShadingPoint::lobe_flags(size_t lobe) const {
   return flags;
 }
 
-vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
+vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const { return integrate(wo, points_per_lobe, false); }
+
+vec3 ShadingPoint::energy(vec3 wi, int points_per_lobe) const {
+  // Without fluorescence each channel is its own and the BRDF reciprocal: the albedo seen from wi.
+  return integrate(wi, points_per_lobe, queries().glows());
+}
+
+vec3 ShadingPoint::integrate(vec3 wo, int points_per_lobe, bool adjoint) const {
   const Local q = queries();
   wo = local(wo);
   if (wo.z <= 0.0f || points_per_lobe <= 0) return vec3(0.0f);
@@ -335,14 +364,16 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const {
     for (int i = 0; i < points_per_lobe; ++i) {
       const Sample sample =
           q.draw(s, entry, wo, hammersley(uint32_t(i), uint32_t(points_per_lobe)), evaluator_->entry_lobe_);
-      if (sample.pdf > 0.0f) sum += weight_of(sample.wi, sample.f, sample.pdf);
+      const vec3 f = adjoint ? q.respond(sample.wi, wo, vec3(1.0f), true) : sample.f;
+      if (sample.pdf > 0.0f) sum += weight_of(sample.wi, f, sample.pdf);
     }
     total += (1.0f - kCosineShare) * w * sum / float(points_per_lobe);
   }
   vec3 sum(0.0f);
   for (int i = 0; i < points_per_lobe; ++i) {
     const vec3 wi = k::sample_cosine(hammersley(uint32_t(i), uint32_t(points_per_lobe)));
-    if (wi.z > 0.0f) sum += weight_of(wi, q.eval(wi, wo), q.pdf(s, wi, wo));
+    if (wi.z > 0.0f)
+      sum += weight_of(wi, adjoint ? q.respond(wi, wo, vec3(1.0f), true) : q.eval(wi, wo), q.pdf(s, wi, wo));
   }
   return total + kCosineShare * sum / float(points_per_lobe);
 }
@@ -379,6 +410,20 @@ Sample Evaluator::sample(const ShadingContext& ctx, vec3 wo, vec2 u, float u_lob
 
 vec3 Evaluator::albedo(const ShadingContext& ctx, vec3 wo, int points_per_lobe) const {
   return bind(ctx).albedo(wo, points_per_lobe);
+}
+
+vec3 Evaluator::energy(const ShadingContext& ctx, vec3 wi, int points_per_lobe) const {
+  return bind(ctx).energy(wi, points_per_lobe);
+}
+
+vec3 Evaluator::eval(const ShadingContext& ctx, vec3 wi, vec3 wo, vec3 light) const {
+  if (!program_.textured() && default_frame(ctx)) return fixed_queries().respond(wi, wo, light, false);
+  return bind(ctx).eval(wi, wo, light);
+}
+
+vec3 Evaluator::eval_adjoint(const ShadingContext& ctx, vec3 wi, vec3 wo, vec3 weight) const {
+  if (!program_.textured() && default_frame(ctx)) return fixed_queries().respond(wo, wi, weight, true);
+  return bind(ctx).eval_adjoint(wi, wo, weight);
 }
 
 std::vector<float> Evaluator::lobe_weights(const ShadingContext& ctx, vec3 wo) const {

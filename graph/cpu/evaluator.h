@@ -58,6 +58,16 @@ class ShadingPoint {
   // Directions in the space of the context's normal and tangent (world space for a renderer; the
   // local frame with the default context).
   glm::vec3 eval(glm::vec3 wi, glm::vec3 wo) const;
+  // What is reflected toward wo of light of colour `light` arriving from wi. eval(wi, wo) is its
+  // white light, (1, 1, 1); every channel is its own, eval(wi, wo) * light, unless a fluorescent
+  // base moves light between channels (substrate/fluorescent), whose F is a 3 x 3 matrix.
+  glm::vec3 eval(glm::vec3 wi, glm::vec3 wo, glm::vec3 light) const;
+  // F^T(wi, wo) weight: what a path traced from the viewer carries on past a bounce whose weight
+  // was `weight` (so that weight . eval(wi, wo, L) = eval_adjoint(wi, wo, weight) . L). Without
+  // fluorescence, eval(wi, wo) * weight.
+  glm::vec3 eval_adjoint(glm::vec3 wi, glm::vec3 wo, glm::vec3 weight) const;
+  // Whether a fluorescent base moves light between channels here.
+  bool fluorescent() const;
   float pdf(glm::vec3 wi, glm::vec3 wo) const;
   // eval and pdf together, bit for bit what the two return apart, sharing the work.
   EvalPdf eval_pdf(glm::vec3 wi, glm::vec3 wo) const;
@@ -67,6 +77,11 @@ class ShadingPoint {
   // quadrature: each lobe's sampler and a cosine-weighted one driven by Hammersley point sets,
   // combined as their mixture.
   glm::vec3 albedo(glm::vec3 wo, int points_per_lobe = 1024) const;
+  // Energy conservation's measure: per channel, the energy that light of that channel arriving from
+  // wi leaves with, over every direction and channel (at most 1). The albedo seen from wi, by
+  // reciprocity, unless fluorescence moves light between channels (then a channel's albedo may
+  // exceed 1 under white light while no channel gives back more than it receives).
+  glm::vec3 energy(glm::vec3 wi, int points_per_lobe = 1024) const;
   // The lobe selection probabilities at wo (they sum to 1; all 0 when wo reaches no lobe: below the
   // horizon, or behind the horizon of every tilted entry it meets).
   std::vector<float> lobe_weights(glm::vec3 wo) const;
@@ -96,6 +111,8 @@ class ShadingPoint {
   friend class Evaluator;
   explicit ShadingPoint(const Evaluator& evaluator) : evaluator_(&evaluator) {}
   glm::vec3 world(glm::vec3 w) const { return identity_frame_ ? w : frame_.to_world(w); }
+  // albedo's quadrature at wo; adjoint: of F^T with white weight, energy's.
+  glm::vec3 integrate(glm::vec3 wo, int points_per_lobe, bool adjoint) const;
   const kernels::LaminaParams* params() const;
   Local queries() const;
 
@@ -136,6 +153,9 @@ class Evaluator {
   EvalPdf eval_pdf(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo) const;
   Sample sample(const ShadingContext& ctx, glm::vec3 wo, glm::vec2 u, float u_lobe) const;
   glm::vec3 albedo(const ShadingContext& ctx, glm::vec3 wo, int points_per_lobe = 1024) const;
+  glm::vec3 energy(const ShadingContext& ctx, glm::vec3 wi, int points_per_lobe = 1024) const;
+  glm::vec3 eval(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo, glm::vec3 light) const;
+  glm::vec3 eval_adjoint(const ShadingContext& ctx, glm::vec3 wi, glm::vec3 wo, glm::vec3 weight) const;
   std::vector<float> lobe_weights(const ShadingContext& ctx, glm::vec3 wo) const;
   std::vector<float> texture_registers(const ShadingContext& ctx) const;
 

@@ -13,6 +13,7 @@ namespace lamina::cpu {
 
 namespace k = kernels;
 using glm::dvec3;
+using glm::mat3;
 using glm::vec3;
 
 namespace {
@@ -102,13 +103,15 @@ class Walk {
     return MicrosurfaceBoundary{p.eta, x.distribution, x.fresnel, p.m};
   }
 
-  // f(l, e) of a vertex, RGB: an interface's by one walk over its microsurface (an unbiased
-  // estimate), a substrate's exactly.
-  vec3 f(const Vertex& v, vec3 l, vec3 e) {
+  // What a vertex reflects toward e of light `light` arriving from l, RGB: an interface's f by one
+  // walk over its microsurface (an unbiased estimate), a substrate's exactly (a fluorescent one's
+  // matrix, lamina_substrate_response).
+  vec3 f(const Vertex& v, vec3 l, vec3 e, vec3 light) {
     const k::LaminaEntry& x = entry(v.entry);
-    if (x.kind == k::LAMINA_LAYER) return vec3(microsurface_eval(boundary(v.entry), l, e, rng_) / std::abs(e.z));
+    if (x.kind == k::LAMINA_LAYER)
+      return vec3(microsurface_eval(boundary(v.entry), l, e, rng_) / std::abs(e.z)) * light;
     if (l.z <= 0.0f || e.z <= 0.0f) return vec3(0.0f);
-    return k::lamina_substrate_eval(x, params(v.entry), l, e);
+    return k::lamina_substrate_response(x, params(v.entry), l, e, light, false);
   }
 
   // What the balance heuristic weighs a vertex's draws by: a substrate's exact density; for an
@@ -125,8 +128,10 @@ class Walk {
   }
 
   struct Scatter {
-    vec3 y{0.0f};       // the light's side, pointing away from the vertex; 0 if the draw is lost
-    vec3 weight{0.0f};  // f(y, x) |y.z| / density: what the viewer's path is multiplied by
+    vec3 y{0.0f};          // the light's side, pointing away from the vertex; 0 if the draw is lost
+    vec3 weight{0.0f};     // f(y, x) |y.z| / density: what the viewer's path is multiplied by
+    bool glowing = false;  // a fluorescent base: the weight is the matrix
+    mat3 matrix{0.0f};
   };
 
   // A direction the vertex scatters x (the viewer's side) into, and the path's weight. An
@@ -158,6 +163,8 @@ class Walk {
     if (!(density > 0.0f)) return out;
     out.y = y;
     out.weight = k::lamina_substrate_eval(e, p, y, x) * y.z / density;
+    out.glowing = p.glowing;
+    out.matrix = p.glow * (y.z / density);
     return out;
   }
 
@@ -194,22 +201,45 @@ Top find_top(Walk& w) {
   return top;
 }
 
+// A walk's throughput: per channel (vec3) where every vertex keeps each channel to itself, or the
+// matrix product of its vertices (mat3) through a fluorescent base, which moves light between
+// channels. What the path delivers of light L reaching its last vertex is throughput(L).
+void attenuate(vec3& beta, vec3 w) { beta *= w; }
+void attenuate(mat3& beta, vec3 w) {
+  beta[0] *= w.x;
+  beta[1] *= w.y;
+  beta[2] *= w.z;
+}
+void attenuate(vec3& beta, const Walk::Scatter& s) { beta *= s.weight; }
+void attenuate(mat3& beta, const Walk::Scatter& s) {
+  if (s.glowing)
+    beta = beta * s.matrix;
+  else
+    attenuate(beta, s.weight);
+}
+vec3 deliver(vec3 beta, vec3 light) { return beta * light; }
+vec3 deliver(const mat3& beta, vec3 light) { return beta * light; }
+// What the throughput delivers of white light, for roulette and the truncation tally.
+vec3 white(vec3 beta) { return beta; }
+vec3 white(const mat3& beta) { return beta * vec3(1.0f); }
+
 // Where a walk travelling along d in `medium` meets its next vertex, passing index-matched
 // interfaces (and attenuating by the media it crosses on the way). Returns the vertex; `medium`
 // becomes the medium the vertex is met from and beta takes the crossings.
-Vertex next_vertex(Walk& w, int& medium, vec3 d, vec3& beta) {
-  beta *= w.crossing(medium, d);
+template <class Beta>
+Vertex next_vertex(Walk& w, int& medium, vec3 d, Beta& beta) {
+  attenuate(beta, w.crossing(medium, d));
   if (d.z > 0.0f) {
     while (w.invisible(medium)) {
       medium = w.medium_above(medium);
-      beta *= w.crossing(medium, d);
+      attenuate(beta, w.crossing(medium, d));
     }
     return Vertex{medium, true};
   }
   int c = w.resolve_down(medium);
   while (w.is_layer(c) && w.invisible(c)) {
     medium = c;
-    beta *= w.crossing(medium, d);
+    attenuate(beta, w.crossing(medium, d));
     c = w.resolve_down(medium);
   }
   return Vertex{c, false};
@@ -243,23 +273,28 @@ float max_component(vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 // medium of index n divides by n^2 and gets back on leaving it; beta n^2 is the energy still
 // travelling. (Rouletting on beta alone killed every other lossless walk in a medium of index 1.35
 // and sent the survivors out with weight 1.82: four times the albedo's variance.)
-bool survives(Walk& w, int depth, int medium, vec3& beta) {
+template <class Beta>
+bool survives(Walk& w, int depth, int medium, Beta& beta) {
   if (depth < 8) return true;
   const float n = w.index(medium);
-  const float q = std::min(max_component(beta) * n * n, 1.0f);
+  const float q = std::min(max_component(white(beta)) * n * n, 1.0f);
   if (!(q > 0.0f) || w.rng().uniform() >= q) return false;
   beta /= q;
   return true;
 }
 
-// One walk's estimate of f(wi, wo) (both in the upper hemisphere, in the stack's frame).
-vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
+// One walk's estimate of what is reflected of light `incident` from wi toward wo (both in the upper
+// hemisphere, in the stack's frame). Beta: the throughput's type (vec3, or mat3 through a fluorescent base).
+template <class Beta>
+vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, vec3 incident, int max_depth, Tally& tally) {
   const Top top = find_top(w);
   if (top.entry < 0) return vec3(0.0f);
-  const vec3 outside = top.outside_crossing(w, wi) * top.outside_crossing(w, wo);
+  // The clear media above the top attenuate the light on its way in and out.
+  const vec3 light_in = top.outside_crossing(w, wi) * incident;
+  const vec3 outside = top.outside_crossing(w, wo);
   const Vertex top_above{top.entry, false};
   // Reflection at the top boundary: one walk over its microsurface, or a substrate's exact value.
-  vec3 f = w.f(top_above, wi, wo);
+  vec3 f = w.f(top_above, wi, wo, light_in);
   if (!w.is_layer(top.entry)) return outside * f;
   const int t = top.entry;
 
@@ -273,14 +308,15 @@ vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
   // The viewer's side: into the top medium from wo (a reflection is the top's, counted above).
   const Walk::Scatter enter = w.scatter(top_above, wo);
   if (!(enter.y.z < 0.0f)) return outside * f;
-  vec3 beta = enter.weight;
+  Beta beta(1.0f);
+  attenuate(beta, enter);
   vec3 d = enter.y;
   int medium = t;
   float last_density = 0.0f;  // the weighing density of the last vertex's draw of d
 
   for (int depth = 0;; ++depth) {
     if (depth >= max_depth) {
-      tally.truncated += dvec3(beta);
+      tally.truncated += dvec3(white(beta));
       ++tally.truncated_walks;
       break;
     }
@@ -290,7 +326,7 @@ vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
       // Reached the top from below: leave toward wi, weighed against the light side's draw of d.
       const float light_here = w.weighing_density(top_above, e, wi);
       const float weight = last_density + light_here > 0.0f ? last_density / (last_density + light_here) : 1.0f;
-      f += beta * w.f(v, wi, e) * weight;
+      f += deliver(beta, w.f(v, wi, e, light_in * weight));
     } else if (joinable) {
       // Join the light side's direction here if nothing lies between this vertex and the top.
       const vec3 up = -light.direction;
@@ -298,12 +334,13 @@ vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
       if (reaches_top(w, v, medium, t, up, transmittance)) {
         const float own = w.weighing_density(v, up, e);
         const float weight = light_density + own > 0.0f ? light_density / (light_density + own) : 0.0f;
-        if (weight > 0.0f) f += beta * w.f(v, up, e) * std::abs(up.z) * transmittance * light_weight * weight;
+        if (weight > 0.0f)
+          f += deliver(beta, w.f(v, up, e, light_in * (std::abs(up.z) * light_weight * weight) * transmittance));
       }
     }
     const Walk::Scatter next = w.scatter(v, e);
     if (next.y == vec3(0.0f)) break;
-    beta *= next.weight;
+    attenuate(beta, next);
     if (v.entry == t && v.from_below && next.y.z > 0.0f) break;  // left through the top: counted above
     medium = medium_after(w, v, medium, next.y);
     last_density = w.weighing_density(v, next.y, e);
@@ -313,28 +350,32 @@ vec3 walk_eval(Walk& w, vec3 wi, vec3 wo, int max_depth, Tally& tally) {
   return outside * f;
 }
 
-// One walk's estimate of the albedo seen from wo: the weight with which it leaves.
-vec3 walk_albedo(Walk& w, vec3 wo, int max_depth, Tally& tally) {
+// One walk's estimate of the albedo seen from wo under light `light` from every direction: the weight
+// with which it leaves.
+template <class Beta>
+vec3 walk_albedo(Walk& w, vec3 wo, vec3 light, int max_depth, Tally& tally) {
   const Top top = find_top(w);
   if (top.entry < 0) return vec3(0.0f);
   const vec3 in = top.outside_crossing(w, wo);
   const Walk::Scatter enter = w.scatter(Vertex{top.entry, false}, wo);
   if (enter.y == vec3(0.0f)) return vec3(0.0f);
-  vec3 beta = enter.weight;
-  if (enter.y.z > 0.0f) return in * beta * top.outside_crossing(w, enter.y);
+  Beta beta(1.0f);
+  attenuate(beta, enter);
+  if (enter.y.z > 0.0f) return in * deliver(beta, top.outside_crossing(w, enter.y) * light);
   vec3 d = enter.y;
   int medium = top.entry;
   for (int depth = 0;; ++depth) {
     if (depth >= max_depth) {
-      tally.truncated += dvec3(in * beta);
+      tally.truncated += dvec3(in * white(beta));
       ++tally.truncated_walks;
       return vec3(0.0f);
     }
     const Vertex v = next_vertex(w, medium, d, beta);
     const Walk::Scatter next = w.scatter(v, -d);
     if (next.y == vec3(0.0f)) return vec3(0.0f);
-    beta *= next.weight;
-    if (v.entry == top.entry && v.from_below && next.y.z > 0.0f) return in * beta * top.outside_crossing(w, next.y);
+    attenuate(beta, next);
+    if (v.entry == top.entry && v.from_below && next.y.z > 0.0f)
+      return in * deliver(beta, top.outside_crossing(w, next.y) * light);
     medium = medium_after(w, v, medium, next.y);
     d = next.y;
     if (!survives(w, depth, medium, beta)) return vec3(0.0f);
@@ -373,7 +414,11 @@ ReferenceEstimate reference_eval(const ShadingPoint& point, vec3 wi, vec3 wo, co
   wo = point.local(wo);
   if (!(wi.z > 0.0f && wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
   const uint64_t seed = hash_directions(wi, wo, options.seed);
-  return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_eval(w, wi, wo, options.max_depth, t); });
+  if (point.fluorescent())
+    return run(point, seed, options,
+               [&](Walk& w, Tally& t) { return walk_eval<mat3>(w, wi, wo, options.light, options.max_depth, t); });
+  return run(point, seed, options,
+             [&](Walk& w, Tally& t) { return walk_eval<vec3>(w, wi, wo, options.light, options.max_depth, t); });
 }
 
 ReferenceEstimate reference_albedo(const ShadingPoint& point, vec3 wo, const ReferenceOptions& options) {
@@ -381,7 +426,11 @@ ReferenceEstimate reference_albedo(const ShadingPoint& point, vec3 wo, const Ref
   wo = point.local(wo);
   if (!(wo.z > 0.0f)) return ReferenceEstimate{.walks = options.walks};
   const uint64_t seed = hash_directions(vec3(0.0f), wo, options.seed ^ 0xa1bed0ull);
-  return run(point, seed, options, [&](Walk& w, Tally& t) { return walk_albedo(w, wo, options.max_depth, t); });
+  if (point.fluorescent())
+    return run(point, seed, options,
+               [&](Walk& w, Tally& t) { return walk_albedo<mat3>(w, wo, options.light, options.max_depth, t); });
+  return run(point, seed, options,
+             [&](Walk& w, Tally& t) { return walk_albedo<vec3>(w, wo, options.light, options.max_depth, t); });
 }
 
 }  // namespace lamina::cpu

@@ -27,6 +27,9 @@ struct ReferenceOptions {
   int64_t walks = 1 << 16;  // random walks per estimate
   int max_depth = 1000;     // scattering events after which a walk is cut off
   uint64_t seed = 0;        // mixed into the seed hashed from the directions
+  // The incident light's colour: the estimates are of what is reflected of it. White gives f itself;
+  // another colour f times it, unless a fluorescent base moves light between channels.
+  glm::vec3 light{1.0f};
 };
 
 // A Monte Carlo estimate per channel with its standard error (the walks' sample standard deviation

@@ -276,10 +276,14 @@ class MaterialEmitter final : public OpWriter {
       << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
       << at << "n = " << vec3_literal(q.n) << ";\n"
       << at << "k = " << vec3_literal(q.k) << ";\n"
+      << at << "film_eta = " << vec3_literal(q.film_eta) << ";\n"
+      << at << "film_depth = " << float_literal(q.film_depth) << ";\n"
       << at << "normal = " << vec3_literal(q.normal) << ";\n"
       << at << "frame_x = " << vec3_literal(q.frame_x) << ";\n"
       << at << "frame_y = " << vec3_literal(q.frame_y) << ";\n"
       << at << "diffuse = " << vec3_literal(q.diffuse) << ";\n"
+      << at << "glowing = " << (q.glowing ? "true" : "false") << ";\n"
+      << at << "glow = " << mat3_literal(q.glow) << ";\n"
       << at << "forward = " << vec3_literal(q.forward) << ";\n"
       << at << "grid = " << vec2_literal(q.grid) << ";\n"
       << at << "cone_grid = " << vec2_literal(q.cone_grid) << ";\n"
@@ -426,6 +430,35 @@ class MaterialEmitter final : public OpWriter {
 
   // --- the functions: the kernels' composition on the resolved parameters ---------------------------
 
+  // Whether the material has a fluorescent base (lamina_stack_glows): its f is a matrix.
+  bool glows() const {
+    return std::any_of(p_.stack.begin(), p_.stack.end(), [](const StackEntry& e) {
+      return e.kind == kernels::LAMINA_SUBSTRATE && e.model == kernels::LAMINA_SUBSTRATE_FLUORESCENT;
+    });
+  }
+
+  // Under fluorescence, what is reflected of a coloured light and the transpose a path traced from
+  // the viewer carries (the kernels' *_response functions; eval is their white light).
+  void emit_light_functions(std::ostringstream& s, const std::string& stack) {
+    const std::string model = p_.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "_conserving" : "";
+    auto response = [&](const char* from, const char* to, const char* light, bool adjoint) {
+      const std::string tail = std::string(from) + ", " + to + ", " + light + ", " + (adjoint ? "true" : "false") + ")";
+      return by_parts_ ? "lamina_blend_response(" + stack + ", " + std::to_string(p_.model) + ", " + tail
+                       : "lamina_stack_response" + model + "(" + stack + ", " + tail;
+    };
+    s << "// What \"" << p_.name << "\" reflects toward wo of light of colour `light` from wi. Its fluorescent\n"
+      << "// base moves light between channels, so this is not " << fn("eval") << " times the light.\n";
+    s << "vec3 " << fn("eval_light") << "(vec3 wi, vec3 wo, vec3 light, LaminaPoint point) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
+    s << "  return " << response("wi", "wo", "light", false) << ";\n}\n\n";
+    s << "// The transpose, F^T(wi, wo) weight: what a path traced from the viewer carries on past this\n"
+      << "// bounce (dot(weight, " << fn("eval_light") << "(wi, wo, L, point)) = dot(" << fn("eval_adjoint")
+      << "(wi, wo, weight, point), L)).\n";
+    s << "vec3 " << fn("eval_adjoint") << "(vec3 wi, vec3 wo, vec3 weight, LaminaPoint point) {\n";
+    s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
+    s << "  return " << response("wo", "wi", "weight", true) << ";\n}\n\n";
+  }
+
   void emit_functions(std::ostringstream& s) {
     // The kernels' composition over the whole stack, or by parts over its blend.
     const std::string stack = by_parts_ ? parts() + ", point" : count() + ", " + entries() + ", point.params";
@@ -447,6 +480,7 @@ class MaterialEmitter final : public OpWriter {
     s << "vec3 " << fn("eval") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return vec3(0.0f);\n  }\n";
     s << "  return " << eval << ";\n}\n\n";
+    if (glows()) emit_light_functions(s, stack);
     s << "// The density (per solid angle) with which " << fn("sample") << " draws wi.\n";
     s << "float " << fn("pdf") << "(vec3 wi, vec3 wo, LaminaPoint point) {\n";
     s << "  if (wi.z <= 0.0f || wo.z <= 0.0f) {\n    return 0.0f;\n  }\n" << select;

@@ -20,6 +20,10 @@ std::string vec3_literal(glm::vec3 v) {
   return "vec3(" + float_literal(v.x) + ", " + float_literal(v.y) + ", " + float_literal(v.z) + ")";
 }
 
+std::string mat3_literal(const glm::mat3& m) {
+  return "mat3(" + vec3_literal(m[0]) + ", " + vec3_literal(m[1]) + ", " + vec3_literal(m[2]) + ")";
+}
+
 std::string name_part(std::string_view id) {
   std::string out;
   for (char c : id) {

@@ -15,6 +15,8 @@ namespace lamina::glsl {
 std::string float_literal(float x);
 std::string vec2_literal(glm::vec2 v);
 std::string vec3_literal(glm::vec3 v);
+// Column by column, as GLSL and glm store a matrix.
+std::string mat3_literal(const glm::mat3& m);
 
 // `id` (a lamina identifier, [A-Za-z_][A-Za-z0-9_]*) as a part of a GLSL name: runs of '_'
 // collapsed and '_' trimmed at both ends, because GLSL reserves every name containing "__".

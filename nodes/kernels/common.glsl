@@ -49,6 +49,11 @@ const float LAMINA_MAX_VALUE = 1.0e9f;
 
 LAMINA_FN float lamina_sqr(float x) { return x * x; }
 
+// The diagonal matrix of a vector (mat3 is column-major in glm and GLSL alike).
+LAMINA_FN mat3 lamina_diagonal(vec3 d) {
+  return mat3(vec3(d.x, 0.0f, 0.0f), vec3(0.0f, d.y, 0.0f), vec3(0.0f, 0.0f, d.z));
+}
+
 // Relative luminance of linear sRGB / Rec. 709 primaries (ITU-R BT.709-6, item 3.2).
 LAMINA_FN float lamina_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

@@ -3,6 +3,25 @@
 // Lambert's law: a constant BRDF albedo / pi.
 LAMINA_FN vec3 lambert(vec3 albedo) { return albedo * LAMINA_INV_PI; }
 
+// A fluorescent Lambertian base's albedo as a matrix (Weidlich and Wilkie course, sec. 5.2.2, after
+// Wilkie et al. 2006): column j is what light absorbed in channel j leaves as, in every channel,
+// spread as Lambert's law spreads it. The diagonal is the plain albedo; the rest is fluorescence,
+// which re-radiates at longer wavelengths only (Stokes' shift), so in linear RGB green light may
+// leave as red, and blue as red or green: shifts = (green to red, blue to red, blue to green). No
+// channel returns more than it receives, so each column sums to at most 1: the checker refuses
+// constants beyond that, and where a texture's values go beyond it the shifts of that column are
+// scaled back (the albedo keeps its value).
+LAMINA_FN mat3 lamina_fluorescent_albedo(vec3 albedo, vec3 shifts) {
+  vec3 a = clamp(albedo, vec3(0.0f), vec3(1.0f));
+  vec3 s = max(shifts, vec3(0.0f));
+  float green_out = s.x;
+  float blue_out = s.y + s.z;
+  float green_scale = green_out > 1.0f - a.y ? (1.0f - a.y) / green_out : 1.0f;
+  float blue_scale = blue_out > 1.0f - a.z ? (1.0f - a.z) / blue_out : 1.0f;
+  return mat3(vec3(a.x, 0.0f, 0.0f), vec3(s.x * green_scale, a.y, 0.0f),
+              vec3(s.y * blue_scale, s.z * blue_scale, a.z));
+}
+
 // The part of the course's Oren-Nayar BRDF that depends on neither direction, over albedo / pi:
 // C1 = 1 - 0.5 s2 / (s2 + 0.33), s2 = sigma^2 (Weidlich and Wilkie course, sec. 3.3.1).
 LAMINA_FN float oren_nayar_uniform(float sigma) {

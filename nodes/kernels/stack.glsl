@@ -207,6 +207,7 @@ const int LAMINA_MEDIUM_ABSORBING = 1;  // Beer-Lambert: absorption
 const int LAMINA_SUBSTRATE_LAMBERT = 0;     // lamina_lambert_eval
 const int LAMINA_SUBSTRATE_OREN_NAYAR = 1;  // oren_nayar
 const int LAMINA_SUBSTRATE_CONDUCTOR = 2;   // lamina_conductor_eval
+const int LAMINA_SUBSTRATE_FLUORESCENT = 3; // lamina_fluorescent_albedo: Lambert re-radiating across channels
 
 // One entry of a compiled stack: what it is, where it is. Constant for a material.
 struct LaminaEntry {
@@ -224,7 +225,7 @@ struct LaminaEntry {
 
 // An entry's inputs at one shading point, clamped to their declared ranges (a texture cannot push a
 // parameter outside the model's domain). What each member holds:
-//   colour0  lambert, oren_nayar: albedo; conductor: n (absolute)
+//   colour0  lambert, oren_nayar, fluorescent: albedo; conductor: n (absolute)
 //   colour1  conductor: k (absolute)
 //   colour2  layer: the medium's absorption per micrometre; thin film: the film's index (absolute)
 //   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, a select's index,
@@ -233,6 +234,7 @@ struct LaminaEntry {
 //               threshold;
 //            z: a layer's medium thickness in micrometres; a thin film's thickness in nm; a select's
 //               coverage;
+//            xyz: a fluorescent base's re-radiated shares green to red, blue to red, blue to green;
 //            w: a select's stack count
 //   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
 //            (tangent space, +z the surface's own normal; a mix's stays (0, 0, 1)); not unit:
@@ -272,6 +274,10 @@ struct LaminaParams {
   vec3 frame_x;     // and its tangents (lamina_to_entry)
   vec3 frame_y;
   vec3 diffuse;     // energy-conserving model: the coefficient c of the entry's diffuse part
+  bool glowing;     // the entry's diffuse part crosses channels: a fluorescent base, or a layer over one
+  mat3 glow;        // and then its diffuse coefficient as a matrix, column j what light absorbed in channel
+                    // j leaves as (the Weidlich-Wilkie model reads the base's only); diffuse stays what
+                    // white light sees, which lobe selection reads
   vec3 forward;     // and the coefficient 1 / N of its forward part (lamina_forward_part)
   vec2 grid;        // energy-conserving model, a layer: its boundary's table coordinates (lamina_albedo_grid_xy)
   vec2 cone_grid;   // and over a conductor, the metal's in block C (lamina_conductor_cone_share)
@@ -911,10 +917,18 @@ LAMINA_FN vec3 lamina_guide_entry_keep(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMI
 // equals it only for a uniform u_B, a diffuse substrate right under the layer; under a layer over
 // a layer it lost up to 14% of a lossless white stack's light.) R is less what ends in the
 // layer's guide (lamina_guide_keep), in the round trip and in the gap's series alike.
+// Over a glowing base (LaminaParams.glow) glow receives the same as a matrix: with C_B the base's,
+// each round trip's return W = diag(2 pi int u_B^2 t^2 R cos) the same per channel, the light that
+// leaves after any number of round trips is C_B + C_B W C_B + ... = (I - C_B W)^-1 C_B, over eta^2.
+// The guide's keep scales C_B by its square root on both sides, so that a base's transposed matrix
+// gives the transposed result (the adjoint, lamina_diffuse_response); on a diagonal C_B it is the
+// scale above. Elsewhere glow receives 0.
 LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                          LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i) {
+                                          LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], int i,
+                                          LAMINA_OUT(mat3) glow) {
   int base = entries[i].first;
   vec3 c_base = params[base].diffuse;
+  glow = mat3(0.0f);
   if (c_base.x <= 0.0f && c_base.y <= 0.0f && c_base.z <= 0.0f) return vec3(0.0f);
   float eta = params[i].eta;
   float inv_eta2 = 1.0f / (eta * eta);
@@ -932,7 +946,8 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
   }
   float mu_least = min(lamina_safe_sqrt(1.0f - lamina_sqr(n_least / params[i].ior)), mu_critical);
   LaminaGuide guide = lamina_guide(entries, params, i, n_least);
-  c_base = c_base * lamina_guide_entry_keep(entries, params, i, base, n_least);
+  vec3 entry_keep = lamina_guide_entry_keep(entries, params, i, base, n_least);
+  c_base = c_base * entry_keep;
   vec3 w_sum = vec3(0.0f);
   for (int q = 0; q < 5; ++q) {
     float weight = lamina_gauss5_weight(q);
@@ -957,6 +972,11 @@ LAMINA_FN vec3 lamina_diffuse_coefficient(LAMINA_IN_ARRAY(LaminaEntry) entries[L
     w_sum += (weight * span * mu_out) * keep * u * u * t * t * series;
   }
   vec3 k = c_base * (2.0f * LAMINA_PI) * w_sum;
+  if (params[base].glowing) {
+    mat3 keep_half = lamina_diagonal(sqrt(entry_keep));
+    mat3 c_glow = keep_half * params[base].glow * keep_half;
+    glow = inverse(mat3(1.0f) - c_glow * lamina_diagonal((2.0f * LAMINA_PI) * w_sum)) * c_glow * inv_eta2;
+  }
   return c_base * inv_eta2 / max(vec3(1.0f) - k, vec3(1.0e-6f));
 }
 
@@ -1147,6 +1167,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.normal = lamina_entry_normal(inputs[i].normal);
     lamina_entry_tangents(p.normal, p.frame_x, p.frame_y);
     p.diffuse = vec3(0.0f);
+    p.glowing = false;
+    p.glow = mat3(0.0f);
     p.forward = vec3(0.0f);
     p.grid = vec2(0.0f);
     p.cone_grid = vec2(0.0f);
@@ -1181,6 +1203,14 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.film_depth = inputs[i].scalars.z * p.n_above;
       float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
       p.m = lamina_widened_slope(own, inputs[i].normal);
+    } else if (entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT) {
+      // Its matrix, and as albedo what it returns of white light (the row sums), which the
+      // selection and every white-light query read as a Lambert base's.
+      mat3 albedo = lamina_fluorescent_albedo(inputs[i].colour0, vec3(inputs[i].scalars));
+      p.glowing = true;
+      p.glow = albedo * LAMINA_INV_PI;
+      p.albedo = albedo * vec3(1.0f);
+      p.diffuse = lambert(p.albedo);
     } else {
       p.albedo = inputs[i].colour0;
       p.sigma = inputs[i].scalars.x;
@@ -1208,7 +1238,10 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       params[i].trap_far = lamina_trap_series(entries, params, i, params[i].trap_angles.y);
       params[i].forward = lamina_forward_coefficient(entries, params, i);
     }
-    if (shown && entries[i].kind == LAMINA_LAYER) params[i].diffuse = lamina_diffuse_coefficient(entries, params, i);
+    if (shown && entries[i].kind == LAMINA_LAYER) {
+      params[i].glowing = params[entries[i].first].glowing;
+      params[i].diffuse = lamina_diffuse_coefficient(entries, params, i, params[i].glow);
+    }
   }
 }
 
@@ -1228,14 +1261,50 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
   return lamina_lambert_eval(l, v, p.albedo);
 }
 
+// --- light of a colour -------------------------------------------------------------------------
+// A stack without a fluorescent base reflects each channel on its own: f is a colour, and the light
+// reflected from light L is f L per channel. A fluorescent base moves light from channel to channel
+// (lamina_fluorescent_albedo), so what leaves depends on the incident light's colour, not only on
+// its amount per channel: the compositions take the light L and return what is reflected of it
+// (the *_response functions; lamina_stack_eval and its kin are their L = 1, white light). In a
+// glowing stack the light is attenuated on its way down before the base turns it into other
+// channels, and on its way up after: every layer's transmission is split into its part down
+// (applied to the light it hands on, LaminaEvalStep.lit_on) and its part up (its carry). adjoint
+// gives the transpose, F^T(wi, wo) x, as a path traced from the viewer carries its weight x:
+// evaluated with wi and wo exchanged and every matrix transposed, since the rest is reciprocal.
+
+// Whether a stack has a fluorescent base (constant per material).
+LAMINA_FN bool lamina_stack_glows(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK]) {
+  bool glows = false;
+  for (int i = 0; i < count; ++i)
+    glows = glows || (entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT);
+  return glows;
+}
+
+LAMINA_FN mat3 lamina_glow(LAMINA_IN(LaminaParams) p, bool adjoint) { return adjoint ? transpose(p.glow) : p.glow; }
+
+// What a substrate reflects at (l, v) in its own frame of the light `light`.
+LAMINA_FN vec3 lamina_substrate_response(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 l, vec3 v,
+                                         vec3 light, bool adjoint) {
+  if (p.glowing) return (l.z > 0.0f && v.z > 0.0f) ? lamina_glow(p, adjoint) * light : vec3(0.0f);
+  return lamina_substrate_eval(e, p, l, v) * light;
+}
+
+// The energy-conserving model's diffuse part of an entry, c u(l) u(v), of the light `light`.
+LAMINA_FN vec3 lamina_diffuse_response(LAMINA_IN(LaminaParams) p, vec3 u_l, vec3 u_v, vec3 light, bool adjoint) {
+  if (p.glowing) return u_v * (lamina_glow(p, adjoint) * (u_l * light));
+  return p.diffuse * u_l * u_v * light;
+}
+
 // What one entry of lamina_stack_eval passes between its passes.
 struct LaminaEvalStep {
   vec3 l_on;   // the L and V the entry hands to the entries below it, in the shading frame
   vec3 v_on;
   vec2 z_on;   // their cosines in the frame they were refracted in (a mix: those it was handed)
   vec2 tilt;   // the entry's lamina_tilt_weight for l and v (1 for a mix)
-  vec3 carry;  // a layer's T a t
-  vec3 f;      // the entry's own lobe, then (bottom up) its whole stack
+  vec3 carry;  // a layer's T a t (in a glowing stack, only its part on the way up)
+  vec3 f;      // the entry's own lobe, then (bottom up) its whole stack, as light it reflects
+  vec3 lit_on; // the light the entry hands to the entries below it (lamina_stack_glows)
 };
 
 // The directions entry i of a walk is handed (l and v in the shading frame, z_above their cosines
@@ -1253,6 +1322,7 @@ LAMINA_FN bool lamina_eval_enter(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParam
   step.l_on = vec3(0.0f);
   step.v_on = vec3(0.0f);
   step.z_on = vec2(0.0f);
+  step.lit_on = vec3(0.0f);
   step.tilt = vec2(1.0f);
   if (reached && !mixing) step.tilt = lamina_tilt_weight(l, v, z_above);
   return reached;
@@ -1264,18 +1334,26 @@ LAMINA_FN bool lamina_eval_enter(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParam
 // it hands on (a layer: L', V' and T a t; a mix: its own L, V); bottom up, every entry's f from
 // those of its children, in the recursion's order of operations. An entry is reached when both
 // directions it is handed point up (a layer that cannot refract hands on one that does not), and
-// an unreached entry's f and carry stay 0, so a layer adds f_i + 0 without a branch.
-LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+// an unreached entry's f and carry stay 0, so a layer adds f_i + 0 without a branch. What it
+// reflects of the light `light` (see lamina_stack_glows): in a glowing stack a layer's absorption
+// along L' is the part of its carry T a t applied on the way down.
+LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                     LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo,
+                                     vec3 light, bool adjoint) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
   LaminaEvalStep s[LAMINA_STACK];
+  // Without a fluorescent base every channel is its own: white light inside, the colour at the end.
+  bool glows = lamina_stack_glows(count, entries);
+  vec3 lit_top = glows ? light : vec3(1.0f);
+  vec3 lit_after = glows ? vec3(1.0f) : light;
   // A bare substrate is the only one-entry stack: its lobe is the whole walk. (count is constant
   // per material, so the branch is uniform on the GPU and in SIMD lanes.)
   if (count == 1) {
     vec3 l = vec3(0.0f);
     vec3 v = vec3(0.0f);
     if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
-    return max(lamina_substrate_eval(entries[0], params[0], l, v) * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f));
+    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint);
+    return max(f * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f)) * lit_after;
   }
   for (int i = 0; i < count; ++i) {
     int parent = entries[i].parent;
@@ -1284,6 +1362,7 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
     bool reached = lamina_eval_enter(entries[i], params[i], parent < 0 ? wi : s[max(parent, 0)].l_on,
                                      parent < 0 ? wo : s[max(parent, 0)].v_on,
                                      parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on, l, v, s[i]);
+    vec3 lit = parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
     int kind = entries[i].kind;
     if (!reached) {
       // not reached: nothing from here down
@@ -1292,17 +1371,22 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
       vec3 vb = vec3(0.0f);
       vec3 c = vec3(0.0f);
       s[i].f = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
-                                     params[i].absorption, params[i].thickness, lb, vb, c);
+                                     params[i].absorption, params[i].thickness, lb, vb, c) *
+               lit;
       s[i].l_on = lamina_from_entry(params[i], lb);
       s[i].v_on = lamina_from_entry(params[i], vb);
       s[i].z_on = vec2(lb.z, vb.z);
-      s[i].carry = c;
+      // The absorption along L' goes down with the light; c keeps the rest (c is 0 where it is).
+      vec3 down = glows ? one_way_absorption(params[i].absorption, params[i].thickness, lb.z) : vec3(1.0f);
+      s[i].carry = glows ? c / max(down, vec3(1.0e-30f)) : c;
+      s[i].lit_on = lit * down;
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;
       s[i].v_on = v;
       s[i].z_on = parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on;
+      s[i].lit_on = lit;
     } else {
-      s[i].f = lamina_substrate_eval(entries[i], params[i], l, v);
+      s[i].f = lamina_substrate_response(entries[i], params[i], l, v, lit, adjoint);
     }
   }
   for (int i = count - 1; i >= 0; --i) {
@@ -1314,21 +1398,33 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
     }
     s[i].f = s[i].f * (s[i].tilt.x * s[i].tilt.y);
   }
-  return max(s[0].f, vec3(0.0f));
+  return max(s[0].f, vec3(0.0f)) * lit_after;
+}
+
+LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+  return lamina_stack_response(count, entries, params, wi, wo, vec3(1.0f), false);
 }
 
 // The energy-conserving composition (see lamina_diffuse_coefficient): the same two passes, where
 // every entry carries its specular part s and its diffuse profiles u(l), u(v) (0 where unreached).
-// A back end calls it or lamina_stack_eval by the material's model, constant per material.
-LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
-                                            LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+// A back end calls it or lamina_stack_eval by the material's model, constant per material. Of the
+// light `light` (lamina_stack_glows): in a glowing stack a layer's T(l) t(l) goes down with the light
+// and its carry keeps the rest, and the diffuse parts take the light their mix or the top receives.
+LAMINA_FN vec3 lamina_stack_response_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                                LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi,
+                                                vec3 wo, vec3 light, bool adjoint) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
   LaminaEvalStep s[LAMINA_STACK];  // f holds s; carry T(l) t(l) T(v) t(v) / eta^2
+  bool glows = lamina_stack_glows(count, entries);
+  vec3 lit_top = glows ? light : vec3(1.0f);
+  vec3 lit_after = glows ? vec3(1.0f) : light;
   if (count == 1) {
     vec3 l = vec3(0.0f);
     vec3 v = vec3(0.0f);
     if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
-    return max(lamina_substrate_eval(entries[0], params[0], l, v) * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f));
+    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint);
+    return max(f * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f)) * lit_after;
   }
   vec3 u_l[LAMINA_STACK];          // a layer's passage for l, then (bottom up) the entry's u(l)
   vec3 u_v[LAMINA_STACK];
@@ -1345,6 +1441,7 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
     u_v[i] = vec3(0.0f);
     gap_l[i] = vec4(0.0f);
     gap_v[i] = vec4(0.0f);
+    vec3 lit = parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
     int kind = entries[i].kind;
     if (!reached) {
       // not reached: nothing from here down
@@ -1387,20 +1484,23 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
                          lamina_spread_kept(entries, params, i, vb.z, inside_v));
         boost = boost * kept;
       }
-      s[i].f = vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
-                                               params[i].m) *
-                    (1.0f + gain_l * gain_v)) +
-               lamina_forward_part(passage_l * trapped_l, passage_v * trapped_v, params[i].forward, l, v);
+      s[i].f = (vec3(lamina_boundary_reflection(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel,
+                                                params[i].m) *
+                     (1.0f + gain_l * gain_v)) +
+                lamina_forward_part(passage_l * trapped_l, passage_v * trapped_v, params[i].forward, l, v)) *
+               lit;
       s[i].l_on = lamina_from_entry(params[i], lb);
       s[i].v_on = lamina_from_entry(params[i], vb);
       s[i].z_on = vec2(lb.z, vb.z);
-      s[i].carry = passage_l * passage_v * boost / (params[i].eta * params[i].eta);
+      s[i].carry = (glows ? vec3(1.0f) : passage_l) * passage_v * boost / (params[i].eta * params[i].eta);
+      s[i].lit_on = glows ? lit * passage_l : lit;
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;
       s[i].v_on = v;
       s[i].z_on = parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on;
+      s[i].lit_on = lit;
     } else {
-      s[i].f = lamina_substrate_eval(entries[i], params[i], l, v) - params[i].diffuse;
+      s[i].f = (lamina_substrate_eval(entries[i], params[i], l, v) - params[i].diffuse) * lit;
       u_l[i] = vec3(1.0f);
       u_v[i] = vec3(1.0f);
     }
@@ -1417,15 +1517,21 @@ LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEnt
     } else if (kind == LAMINA_MIX) {
       int a = entries[i].first;
       int b = entries[i].second;
-      s[i].f = mix(s[a].f + params[a].diffuse * u_l[a] * u_v[a], s[b].f + params[b].diffuse * u_l[b] * u_v[b],
-                   params[i].weight);
+      vec3 lit = s[i].lit_on;
+      s[i].f = mix(s[a].f + lamina_diffuse_response(params[a], u_l[a], u_v[a], lit, adjoint),
+                   s[b].f + lamina_diffuse_response(params[b], u_l[b], u_v[b], lit, adjoint), params[i].weight);
     }
     // A tilted entry's weight (lamina_tilt_weight): both parts, the diffuse one by its profiles.
     s[i].f = s[i].f * (s[i].tilt.x * s[i].tilt.y);
     u_l[i] = u_l[i] * s[i].tilt.x;
     u_v[i] = u_v[i] * s[i].tilt.y;
   }
-  return max(s[0].f + params[0].diffuse * u_l[0] * u_v[0], vec3(0.0f));
+  return max(s[0].f + lamina_diffuse_response(params[0], u_l[0], u_v[0], lit_top, adjoint), vec3(0.0f)) * lit_after;
+}
+
+LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
+                                            LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
+  return lamina_stack_response_conserving(count, entries, params, wi, wo, vec3(1.0f), false);
 }
 
 // Lobe selection at wo (course sec. 3.2.3): each lobe's estimated share of the reflected energy:
@@ -1757,20 +1863,28 @@ LAMINA_FN void lamina_blend_resolve(int parts, LAMINA_IN_ARRAY(int) counts[LAMIN
 
 // f(wi, wo) of the blend: its parts' f, each by the composition of the material's model, weighed by
 // their shares.
-LAMINA_FN vec3 lamina_blend_eval(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
-                                 LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
-                                 LAMINA_IN(LaminaPoint) point, int model, vec3 wi, vec3 wo) {
+LAMINA_FN vec3 lamina_blend_response(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                     LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                     LAMINA_IN(LaminaPoint) point, int model, vec3 wi, vec3 wo, vec3 light,
+                                     bool adjoint) {
   vec3 f = vec3(0.0f);
   for (int k = 0; k < parts; ++k) {
     LaminaEntry e[LAMINA_STACK];
     LaminaParams p[LAMINA_STACK];
     lamina_part_entries(k, entries, e);
     lamina_part_params(k, point, p);
-    vec3 part = model == LAMINA_MODEL_ENERGY_CONSERVING ? lamina_stack_eval_conserving(counts[k], e, p, wi, wo)
-                                                        : lamina_stack_eval(counts[k], e, p, wi, wo);
+    vec3 part = model == LAMINA_MODEL_ENERGY_CONSERVING
+                    ? lamina_stack_response_conserving(counts[k], e, p, wi, wo, light, adjoint)
+                    : lamina_stack_response(counts[k], e, p, wi, wo, light, adjoint);
     f += point.share[k] * part;
   }
   return f;
+}
+
+LAMINA_FN vec3 lamina_blend_eval(int parts, LAMINA_IN_ARRAY(int) counts[LAMINA_PARTS],
+                                 LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_PARTS * LAMINA_STACK],
+                                 LAMINA_IN(LaminaPoint) point, int model, vec3 wi, vec3 wo) {
+  return lamina_blend_response(parts, counts, entries, point, model, wi, wo, vec3(1.0f), false);
 }
 
 // The lobe selection over all the blend's lobes (lamina_stack_select's, with the floor and the

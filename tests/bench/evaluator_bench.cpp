@@ -240,9 +240,48 @@ void BM_eval_optics_thin_film_rgb(benchmark::State& s) { eval_scalar(s, thin_fil
 void BM_sample_optics_dielectric_layer(benchmark::State& s) { sample_scalar(s, dielectric_layer()); }
 void BM_sample_optics_thin_film_spectral(benchmark::State& s) { sample_scalar(s, thin_film_spectral()); }
 
+// A fluorescent base against a Lambert one under the same varnish (the fluorescent card's), in
+// white light (eval), in a coloured light (the response) and for the adjoint.
+const char* kVarnishOver = R"({"format": 1, "materials": [{"name": "card", "surface": "@card", "nodes": [
+    {"id": "card", "type": "layer", "interface": "@varnish", "base": "@BASE"},
+    {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 17.0},
+    {"id": "lambert", "type": "substrate/lambert", "albedo": [0.55, 0.2, 0.04]},
+    {"id": "pigment", "type": "substrate/fluorescent", "albedo": [0.55, 0.2, 0.04], "green_to_red": 0.4,
+     "blue_to_red": 0.3, "blue_to_green": 0.15}]}]})";
+const lamina::cpu::Evaluator& coat_over_lambert() {
+  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "lambert").c_str());
+  return e;
+}
+const lamina::cpu::Evaluator& coat_over_fluorescent() {
+  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "pigment").c_str());
+  return e;
+}
+void eval_light(benchmark::State& state, const lamina::cpu::Evaluator& e, bool adjoint) {
+  const Queries& q = queries();
+  lamina::ShadingContext ctx;
+  const glm::vec3 light(0.2f, 1.0f, 0.4f);
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(adjoint ? e.eval_adjoint(ctx, q.wi[i], q.wo[i], light)
+                                     : e.eval(ctx, q.wi[i], q.wo[i], light));
+    i = (i + 1) % kQueries;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+void BM_eval_optics_coat_over_lambert(benchmark::State& s) { eval_scalar(s, coat_over_lambert()); }
+void BM_eval_optics_coat_over_fluorescent(benchmark::State& s) { eval_scalar(s, coat_over_fluorescent()); }
+void BM_eval_optics_coat_over_fluorescent_green_light(benchmark::State& s) {
+  eval_light(s, coat_over_fluorescent(), false);
+}
+void BM_eval_optics_coat_over_fluorescent_adjoint(benchmark::State& s) { eval_light(s, coat_over_fluorescent(), true); }
+
 }  // namespace
 
 BENCHMARK(BM_eval_optics_dielectric_layer);
+BENCHMARK(BM_eval_optics_coat_over_lambert);
+BENCHMARK(BM_eval_optics_coat_over_fluorescent);
+BENCHMARK(BM_eval_optics_coat_over_fluorescent_green_light);
+BENCHMARK(BM_eval_optics_coat_over_fluorescent_adjoint);
 BENCHMARK(BM_eval_optics_thin_film_spectral);
 BENCHMARK(BM_eval_optics_thin_film_rgb);
 BENCHMARK(BM_sample_optics_dielectric_layer);

@@ -695,3 +695,46 @@ TEST_CASE("glsl: the header names the material file, not the path it was given b
   CHECK(a.out.find("  vec2   tiles_scale = 4.0 3.0\n") != std::string::npos);
   CHECK(a.out.find("  float  blinn_coat_ior = 1.6\n") != std::string::npos);
 }
+
+TEST_CASE("glsl: an untextured material's constant parameters set every member of LaminaParams") {
+  // The struct's members as stack.glsl declares them: a member the generator forgets is left
+  // undefined in GLSL (a thin film's index and thickness were once).
+  const std::string kernel = test::read_file(test::source_dir() / "nodes/kernels/stack.glsl");
+  const size_t start = kernel.find("struct LaminaParams {");
+  REQUIRE(start != std::string::npos);
+  const size_t end = kernel.find("\n};", start);
+  std::set<std::string> members;
+  std::istringstream lines(kernel.substr(start, end - start));
+  std::string line;
+  const std::regex member(R"(^  [a-z0-9]+ ([a-z_0-9]+);)");
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, member)) members.insert(m[1].str());
+  }
+  REQUIRE(members.size() > 20);
+  for (const char* name : {"car_paint.json", "fluorescent_card.json"}) {
+    Compiled c = compile_file(test::source_dir() / "examples/materials" / name);
+    REQUIRE_FALSE(c.programs[0].textured());
+    const std::string source = generate({c.programs[0]}, glsl::Target::Glsl330, false);
+    for (const std::string& m : members)
+      CHECK_MESSAGE(source.find("params[0]." + m + " = ") != std::string::npos, name << ": " << m);
+  }
+}
+
+TEST_CASE("glsl: a fluorescent material's module has functions for coloured light and the adjoint, others none") {
+  for (const fs::path& file : glsl_material_files()) {
+    Compiled c = compile_file(file);
+    for (const Program& p : c.programs) {
+      const bool glows = std::any_of(p.stack.begin(), p.stack.end(), [](const StackEntry& e) {
+        return e.kind == kernels::LAMINA_SUBSTRATE && e.model == kernels::LAMINA_SUBSTRATE_FLUORESCENT;
+      });
+      const std::string source = generate({p}, glsl::Target::Glsl330, false);
+      CHECK_MESSAGE(
+          (source.find("_eval_light(vec3 wi, vec3 wo, vec3 light, LaminaPoint point)") != std::string::npos) == glows,
+          p.name);
+      CHECK_MESSAGE((source.find("_eval_adjoint(vec3 wi, vec3 wo, vec3 weight, LaminaPoint point)") !=
+                     std::string::npos) == glows,
+                    p.name);
+    }
+  }
+}

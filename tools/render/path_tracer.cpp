@@ -152,6 +152,13 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
       result.albedo = point.albedo(wo, 16);
     }
 
+    // A fluorescent base moves light between channels: what a light of radiance L gives is F L, not
+    // f * L, and the path's throughput is carried on by the transposed F (ShadingPoint::eval_adjoint).
+    const bool glowing = point.fluorescent();
+    auto reflected = [&](vec3 wi, vec3 f, vec3 radiance) {
+      return glowing ? point.eval(wi, wo, radiance) : f * radiance;
+    };
+
     // A light sample that is not a delta: its MIS weight against BRDF sampling, which could have drawn
     // the same direction.
     // `emitter`: the point drawn on an emitting surface; none for light from infinitely far away.
@@ -164,7 +171,8 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
                   : scene.occluded(offset_origin(hit->position, ng, wi), wi, std::numeric_limits<float>::infinity()))
         return;
       const float weight = count_escapes ? power_heuristic(light_pdf, brdf.pdf) : 1.0f;
-      result.radiance += throughput * brdf.f * std::max(glm::dot(n, wi), 0.0f) * radiance * (weight / light_pdf);
+      result.radiance +=
+          throughput * reflected(wi, brdf.f, radiance) * (std::max(glm::dot(n, wi), 0.0f) * weight / light_pdf);
     };
 
     if (sample_lights) {
@@ -197,7 +205,7 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
         ++counters.shadow;
         const vec3 from = offset_origin(hit->position, ng, wi);
         if (scene.occluded(from, wi, std::isinf(distance) ? distance : distance * (1.0f - 1.0e-4f))) continue;
-        result.radiance += throughput * f * std::max(glm::dot(n, wi), 0.0f) * incident;
+        result.radiance += throughput * reflected(wi, f, incident) * std::max(glm::dot(n, wi), 0.0f);
       }
       if (environment.present()) {
         const vec2 u(rng.uniform(), rng.uniform());
@@ -215,7 +223,7 @@ PathResult trace(const RenderScene& scene, const RenderOptions& options, const C
     const cpu::Sample s = point.sample(wo, u, rng.uniform());
     const float cos_i = glm::dot(n, s.wi);
     if (!(s.pdf > 0.0f) || cos_i <= 0.0f || glm::dot(s.wi, ng) <= 0.0f) break;
-    throughput *= s.f * (cos_i / s.pdf);
+    throughput = (glowing ? point.eval_adjoint(s.wi, wo, throughput) : throughput * s.f) * (cos_i / s.pdf);
     previous_pdf = s.pdf;
     if (depth + 1 >= options.roulette_depth) {
       // Continue with the probability of the path's throughput (at most 0.95: every path ends).
