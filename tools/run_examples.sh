@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build, then check, classify, measure, plot and compile to
 # GLSL every bundled example, export the showcase scene to glTF with its fallback fit report, path
-# trace the showcase and preview every example.
+# trace the showcase and the fluorescence scene, and preview every example.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
@@ -79,6 +79,9 @@ render=build/render
 mkdir -p "$render"
 echo "== lamina render: examples/showcase.json path traced to $render/showcase.png (480 x 320, 16 samples per pixel)"
 $lamina render examples/showcase.json -o "$render/showcase.png" --width 480 --spp 16 --stats
+
+echo "== lamina render: examples/fluorescent_green_light.json, the fluorescent card beside its plain twin under green light, to $render/fluorescent_green_light.png"
+$lamina render examples/fluorescent_green_light.json -o "$render/fluorescent_green_light.png" --width 480 --spp 16
 echo
 echo "== lamina preview: every example on a sphere in the studio, side by side, in $render/examples.png"
 $lamina preview examples/materials --compare -o "$render/examples.png" --size 128 --spp 24

@@ -90,6 +90,7 @@ Evaluator::Evaluator(Program program) : program_(std::move(program)) {
     entries_[size_t(i)] = kernel_entry(program_.stack[size_t(i)], true);
     constants_[size_t(i)] = kernel_constants(program_.stack[size_t(i)], true);
   }
+  glows_ = k::lamina_stack_glows(count_, entries_.data());
   for (const Lobe& lobe : collect_lobes(program_)) {
     entry_lobe_[size_t(lobe.entry)] = int(lobe_entry_.size());
     lobe_entry_.push_back(lobe.entry);
@@ -163,22 +164,25 @@ std::span<const float> ShadingPoint::registers() const {
 // instructions. Kept out of line so that each query is compiled on its own. `Count` > 0 compiles
 // the query for stacks of that many entries (the count folded into the loops); 0 for any count.
 namespace {
+// White light on a stack without a fluorescent base (lamina_stack_glows false, a constant here).
 template <int Count>
 [[gnu::flatten, gnu::noinline]] vec3 stack_eval(int count, const k::LaminaEntry* entries, const k::LaminaParams* params,
                                                 vec3 wi, vec3 wo) {
-  return k::lamina_stack_eval(Count > 0 ? Count : count, entries, params, wi, wo);
+  return k::lamina_stack_response(Count > 0 ? Count : count, entries, params, wi, wo, vec3(1.0f), false, false);
 }
 template <int Count>
 [[gnu::flatten, gnu::noinline]] vec3 stack_eval_conserving(int count, const k::LaminaEntry* entries,
                                                            const k::LaminaParams* params, vec3 wi, vec3 wo) {
-  return k::lamina_stack_eval_conserving(Count > 0 ? Count : count, entries, params, wi, wo);
+  return k::lamina_stack_response_conserving(Count > 0 ? Count : count, entries, params, wi, wo, vec3(1.0f), false,
+                                             false);
 }
 // Light of a colour (lamina_stack_glows): off the hot path, for any count.
 [[gnu::noinline]] vec3 stack_response(int model, int count, const k::LaminaEntry* entries,
-                                      const k::LaminaParams* params, vec3 wi, vec3 wo, vec3 light, bool adjoint) {
+                                      const k::LaminaParams* params, vec3 wi, vec3 wo, vec3 light, bool adjoint,
+                                      bool glows) {
   if (model == k::LAMINA_MODEL_ENERGY_CONSERVING)
-    return k::lamina_stack_response_conserving(count, entries, params, wi, wo, light, adjoint);
-  return k::lamina_stack_response(count, entries, params, wi, wo, light, adjoint);
+    return k::lamina_stack_response_conserving(count, entries, params, wi, wo, light, adjoint, glows);
+  return k::lamina_stack_response(count, entries, params, wi, wo, light, adjoint, glows);
 }
 [[gnu::flatten, gnu::noinline]] void stack_select(int count, const k::LaminaEntry* entries,
                                                   const k::LaminaParams* params, vec3 wo, Selection& s) {
@@ -201,6 +205,7 @@ struct Local {
   const k::LaminaEntry* entries;
   const k::LaminaParams* params;
   int model;                   // the program's LAMINA_MODEL_*
+  bool glows;                  // the material has a fluorescent base (lamina_stack_glows): f is a matrix
   const int* whole = nullptr;  // a shown stack's entries' indices in the whole stack (shown_stack)
 
   // Entry i's index in the whole stack, which lobes are numbered by.
@@ -210,6 +215,8 @@ struct Local {
   // A bare substrate, the only one-entry stack, has an instance of its own: a lone lobe then costs
   // no more than its formula (the general instance is about 8% slower there, in time).
   vec3 eval(vec3 wi, vec3 wo) const {
+    // A fluorescent stack's white light goes through the split of the light's way down and up.
+    if (glows) return respond(wi, wo, vec3(1.0f), false);
     const bool bare = count == 1;
     if (model == k::LAMINA_MODEL_ENERGY_CONSERVING)
       return bare ? stack_eval_conserving<1>(count, entries, params, wi, wo)
@@ -217,9 +224,8 @@ struct Local {
     return bare ? stack_eval<1>(count, entries, params, wi, wo) : stack_eval<0>(count, entries, params, wi, wo);
   }
   vec3 respond(vec3 wi, vec3 wo, vec3 light, bool adjoint) const {
-    return stack_response(model, count, entries, params, wi, wo, light, adjoint);
+    return stack_response(model, count, entries, params, wi, wo, light, adjoint, glows);
   }
-  bool glows() const { return k::lamina_stack_glows(count, entries); }
   void select(vec3 wo, Selection& s) const { stack_select(count, entries, params, wo, s); }
   float pdf(const Selection& s, vec3 wi, vec3 wo) const { return stack_pdf(count, entries, params, s, wi, wo); }
   float pdf(vec3 wi, vec3 wo) const {
@@ -251,17 +257,19 @@ int ShadingPoint::walked_entries() const { return queries().count; }
 Local ShadingPoint::queries() const {
   const int model = evaluator_->program_.model;
   if (shown_count_ > 0)
-    return Local{shown_count_, shown_entries_.data(), shown_params_.data(), model, shown_whole_.data()};
+    return Local{shown_count_, shown_entries_.data(), shown_params_.data(),
+                 model,        evaluator_->glows_,    shown_whole_.data()};
   if (!own_params_) return evaluator_->fixed_queries();
-  return Local{evaluator_->count_, evaluator_->entries_.data(), params_.data(), model};
+  return Local{evaluator_->count_, evaluator_->entries_.data(), params_.data(), model, evaluator_->glows_};
 }
 
-Local Evaluator::fixed_queries() const {
+// Inlined: it is the hot path of an untextured material's queries.
+[[gnu::always_inline]] inline Local Evaluator::fixed_queries() const {
   const Shown& shown = fixed_shown_;
   if (!shown.entries.empty())
-    return Local{int(shown.entries.size()), shown.entries.data(), shown.params.data(), program_.model,
+    return Local{int(shown.entries.size()), shown.entries.data(), shown.params.data(), program_.model, glows_,
                  shown.whole.data()};
-  return Local{count_, entries_.data(), fixed_.data(), program_.model};
+  return Local{count_, entries_.data(), fixed_.data(), program_.model, glows_};
 }
 
 vec3 ShadingPoint::eval(vec3 wi, vec3 wo) const { return queries().eval(local(wi), local(wo)); }
@@ -275,7 +283,7 @@ vec3 ShadingPoint::eval_adjoint(vec3 wi, vec3 wo, vec3 weight) const {
   return queries().respond(local(wo), local(wi), weight, true);
 }
 
-bool ShadingPoint::fluorescent() const { return queries().glows(); }
+bool ShadingPoint::fluorescent() const { return queries().glows; }
 
 float ShadingPoint::pdf(vec3 wi, vec3 wo) const { return queries().pdf(local(wi), local(wo)); }
 
@@ -329,7 +337,7 @@ vec3 ShadingPoint::albedo(vec3 wo, int points_per_lobe) const { return integrate
 
 vec3 ShadingPoint::energy(vec3 wi, int points_per_lobe) const {
   // Without fluorescence each channel is its own and the BRDF reciprocal: the albedo seen from wi.
-  return integrate(wi, points_per_lobe, queries().glows());
+  return integrate(wi, points_per_lobe, queries().glows);
 }
 
 vec3 ShadingPoint::integrate(vec3 wo, int points_per_lobe, bool adjoint) const {

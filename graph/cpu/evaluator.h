@@ -200,6 +200,7 @@ class Evaluator {
 
   Program program_;
   int count_ = 0;                                 // stack entries
+  bool glows_ = false;                            // a fluorescent base (lamina_stack_glows)
   std::vector<kernels::LaminaEntry> entries_;     // Program::stack as the kernels read it
   std::vector<kernels::LaminaInputs> constants_;  // every entry's inputs with its constants
   std::vector<kernels::LaminaParams> fixed_;      // untextured: every entry's parameters, resolved once

@@ -111,7 +111,7 @@ class Walk {
     if (x.kind == k::LAMINA_LAYER)
       return vec3(microsurface_eval(boundary(v.entry), l, e, rng_) / std::abs(e.z)) * light;
     if (l.z <= 0.0f || e.z <= 0.0f) return vec3(0.0f);
-    return k::lamina_substrate_response(x, params(v.entry), l, e, light, false);
+    return k::lamina_substrate_response(x, params(v.entry), l, e, light, false, true);
   }
 
   // What the balance heuristic weighs a vertex's draws by: a substrate's exact density; for an

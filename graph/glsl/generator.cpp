@@ -442,9 +442,9 @@ class MaterialEmitter final : public OpWriter {
   void emit_light_functions(std::ostringstream& s, const std::string& stack) {
     const std::string model = p_.model == kernels::LAMINA_MODEL_ENERGY_CONSERVING ? "_conserving" : "";
     auto response = [&](const char* from, const char* to, const char* light, bool adjoint) {
-      const std::string tail = std::string(from) + ", " + to + ", " + light + ", " + (adjoint ? "true" : "false") + ")";
-      return by_parts_ ? "lamina_blend_response(" + stack + ", " + std::to_string(p_.model) + ", " + tail
-                       : "lamina_stack_response" + model + "(" + stack + ", " + tail;
+      const std::string tail = std::string(from) + ", " + to + ", " + light + ", " + (adjoint ? "true" : "false");
+      return by_parts_ ? "lamina_blend_response(" + stack + ", " + std::to_string(p_.model) + ", " + tail + ")"
+                       : "lamina_stack_response" + model + "(" + stack + ", " + tail + ", true)";
     };
     s << "// What \"" << p_.name << "\" reflects toward wo of light of colour `light` from wi. Its fluorescent\n"
       << "// base moves light between channels, so this is not " << fn("eval") << " times the light.\n";

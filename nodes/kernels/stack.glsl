@@ -1272,6 +1272,8 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
 // (applied to the light it hands on, LaminaEvalStep.lit_on) and its part up (its carry). adjoint
 // gives the transpose, F^T(wi, wo) x, as a path traced from the viewer carries its weight x:
 // evaluated with wi and wo exchanged and every matrix transposed, since the rest is reciprocal.
+// glows is lamina_stack_glows of the stack, which a back end knows per material: false, the
+// light's colour is applied at the end and every step of the split is a constant to its compiler.
 
 // Whether a stack has a fluorescent base (constant per material).
 LAMINA_FN bool lamina_stack_glows(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK]) {
@@ -1283,16 +1285,17 @@ LAMINA_FN bool lamina_stack_glows(int count, LAMINA_IN_ARRAY(LaminaEntry) entrie
 
 LAMINA_FN mat3 lamina_glow(LAMINA_IN(LaminaParams) p, bool adjoint) { return adjoint ? transpose(p.glow) : p.glow; }
 
-// What a substrate reflects at (l, v) in its own frame of the light `light`.
+// What a substrate reflects at (l, v) in its own frame of the light `light` (glows: of its stack).
 LAMINA_FN vec3 lamina_substrate_response(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p, vec3 l, vec3 v,
-                                         vec3 light, bool adjoint) {
-  if (p.glowing) return (l.z > 0.0f && v.z > 0.0f) ? lamina_glow(p, adjoint) * light : vec3(0.0f);
+                                         vec3 light, bool adjoint, bool glows) {
+  if (glows && p.glowing) return (l.z > 0.0f && v.z > 0.0f) ? lamina_glow(p, adjoint) * light : vec3(0.0f);
   return lamina_substrate_eval(e, p, l, v) * light;
 }
 
 // The energy-conserving model's diffuse part of an entry, c u(l) u(v), of the light `light`.
-LAMINA_FN vec3 lamina_diffuse_response(LAMINA_IN(LaminaParams) p, vec3 u_l, vec3 u_v, vec3 light, bool adjoint) {
-  if (p.glowing) return u_v * (lamina_glow(p, adjoint) * (u_l * light));
+LAMINA_FN vec3 lamina_diffuse_response(LAMINA_IN(LaminaParams) p, vec3 u_l, vec3 u_v, vec3 light, bool adjoint,
+                                       bool glows) {
+  if (glows && p.glowing) return u_v * (lamina_glow(p, adjoint) * (u_l * light));
   return p.diffuse * u_l * u_v * light;
 }
 
@@ -1339,11 +1342,10 @@ LAMINA_FN bool lamina_eval_enter(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParam
 // along L' is the part of its carry T a t applied on the way down.
 LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                      LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo,
-                                     vec3 light, bool adjoint) {
+                                     vec3 light, bool adjoint, bool glows) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
   LaminaEvalStep s[LAMINA_STACK];
   // Without a fluorescent base every channel is its own: white light inside, the colour at the end.
-  bool glows = lamina_stack_glows(count, entries);
   vec3 lit_top = glows ? light : vec3(1.0f);
   vec3 lit_after = glows ? vec3(1.0f) : light;
   // A bare substrate is the only one-entry stack: its lobe is the whole walk. (count is constant
@@ -1352,7 +1354,7 @@ LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
     vec3 l = vec3(0.0f);
     vec3 v = vec3(0.0f);
     if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
-    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint);
+    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint, glows);
     return max(f * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f)) * lit_after;
   }
   for (int i = 0; i < count; ++i) {
@@ -1362,7 +1364,7 @@ LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
     bool reached = lamina_eval_enter(entries[i], params[i], parent < 0 ? wi : s[max(parent, 0)].l_on,
                                      parent < 0 ? wo : s[max(parent, 0)].v_on,
                                      parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on, l, v, s[i]);
-    vec3 lit = parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
+    vec3 lit = !glows ? vec3(1.0f) : parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
     int kind = entries[i].kind;
     if (!reached) {
       // not reached: nothing from here down
@@ -1386,7 +1388,7 @@ LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
       s[i].z_on = parent < 0 ? vec2(wi.z, wo.z) : s[max(parent, 0)].z_on;
       s[i].lit_on = lit;
     } else {
-      s[i].f = lamina_substrate_response(entries[i], params[i], l, v, lit, adjoint);
+      s[i].f = lamina_substrate_response(entries[i], params[i], l, v, lit, adjoint, glows);
     }
   }
   for (int i = count - 1; i >= 0; --i) {
@@ -1403,7 +1405,7 @@ LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
 
 LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                  LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
-  return lamina_stack_response(count, entries, params, wi, wo, vec3(1.0f), false);
+  return lamina_stack_response(count, entries, params, wi, wo, vec3(1.0f), false, lamina_stack_glows(count, entries));
 }
 
 // The energy-conserving composition (see lamina_diffuse_coefficient): the same two passes, where
@@ -1413,17 +1415,16 @@ LAMINA_FN vec3 lamina_stack_eval(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
 // and its carry keeps the rest, and the diffuse parts take the light their mix or the top receives.
 LAMINA_FN vec3 lamina_stack_response_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                                 LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi,
-                                                vec3 wo, vec3 light, bool adjoint) {
+                                                vec3 wo, vec3 light, bool adjoint, bool glows) {
   if (wi.z <= 0.0f || wo.z <= 0.0f || count <= 0) return vec3(0.0f);
   LaminaEvalStep s[LAMINA_STACK];  // f holds s; carry T(l) t(l) T(v) t(v) / eta^2
-  bool glows = lamina_stack_glows(count, entries);
   vec3 lit_top = glows ? light : vec3(1.0f);
   vec3 lit_after = glows ? vec3(1.0f) : light;
   if (count == 1) {
     vec3 l = vec3(0.0f);
     vec3 v = vec3(0.0f);
     if (!lamina_eval_enter(entries[0], params[0], wi, wo, vec2(wi.z, wo.z), l, v, s[0])) return vec3(0.0f);
-    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint);
+    vec3 f = lamina_substrate_response(entries[0], params[0], l, v, lit_top, adjoint, glows);
     return max(f * (s[0].tilt.x * s[0].tilt.y), vec3(0.0f)) * lit_after;
   }
   vec3 u_l[LAMINA_STACK];          // a layer's passage for l, then (bottom up) the entry's u(l)
@@ -1441,7 +1442,7 @@ LAMINA_FN vec3 lamina_stack_response_conserving(int count, LAMINA_IN_ARRAY(Lamin
     u_v[i] = vec3(0.0f);
     gap_l[i] = vec4(0.0f);
     gap_v[i] = vec4(0.0f);
-    vec3 lit = parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
+    vec3 lit = !glows ? vec3(1.0f) : parent < 0 ? lit_top : s[max(parent, 0)].lit_on;
     int kind = entries[i].kind;
     if (!reached) {
       // not reached: nothing from here down
@@ -1517,21 +1518,22 @@ LAMINA_FN vec3 lamina_stack_response_conserving(int count, LAMINA_IN_ARRAY(Lamin
     } else if (kind == LAMINA_MIX) {
       int a = entries[i].first;
       int b = entries[i].second;
-      vec3 lit = s[i].lit_on;
-      s[i].f = mix(s[a].f + lamina_diffuse_response(params[a], u_l[a], u_v[a], lit, adjoint),
-                   s[b].f + lamina_diffuse_response(params[b], u_l[b], u_v[b], lit, adjoint), params[i].weight);
+      vec3 lit = glows ? s[i].lit_on : vec3(1.0f);
+      s[i].f = mix(s[a].f + lamina_diffuse_response(params[a], u_l[a], u_v[a], lit, adjoint, glows),
+                   s[b].f + lamina_diffuse_response(params[b], u_l[b], u_v[b], lit, adjoint, glows), params[i].weight);
     }
     // A tilted entry's weight (lamina_tilt_weight): both parts, the diffuse one by its profiles.
     s[i].f = s[i].f * (s[i].tilt.x * s[i].tilt.y);
     u_l[i] = u_l[i] * s[i].tilt.x;
     u_v[i] = u_v[i] * s[i].tilt.y;
   }
-  return max(s[0].f + lamina_diffuse_response(params[0], u_l[0], u_v[0], lit_top, adjoint), vec3(0.0f)) * lit_after;
+  return max(s[0].f + lamina_diffuse_response(params[0], u_l[0], u_v[0], lit_top, adjoint, glows), vec3(0.0f)) * lit_after;
 }
 
 LAMINA_FN vec3 lamina_stack_eval_conserving(int count, LAMINA_IN_ARRAY(LaminaEntry) entries[LAMINA_STACK],
                                             LAMINA_IN_ARRAY(LaminaParams) params[LAMINA_STACK], vec3 wi, vec3 wo) {
-  return lamina_stack_response_conserving(count, entries, params, wi, wo, vec3(1.0f), false);
+  return lamina_stack_response_conserving(count, entries, params, wi, wo, vec3(1.0f), false,
+                                          lamina_stack_glows(count, entries));
 }
 
 // Lobe selection at wo (course sec. 3.2.3): each lobe's estimated share of the reflected energy:
@@ -1873,9 +1875,10 @@ LAMINA_FN vec3 lamina_blend_response(int parts, LAMINA_IN_ARRAY(int) counts[LAMI
     LaminaParams p[LAMINA_STACK];
     lamina_part_entries(k, entries, e);
     lamina_part_params(k, point, p);
+    bool glows = lamina_stack_glows(counts[k], e);
     vec3 part = model == LAMINA_MODEL_ENERGY_CONSERVING
-                    ? lamina_stack_response_conserving(counts[k], e, p, wi, wo, light, adjoint)
-                    : lamina_stack_response(counts[k], e, p, wi, wo, light, adjoint);
+                    ? lamina_stack_response_conserving(counts[k], e, p, wi, wo, light, adjoint, glows)
+                    : lamina_stack_response(counts[k], e, p, wi, wo, light, adjoint, glows);
     f += point.share[k] * part;
   }
   return f;

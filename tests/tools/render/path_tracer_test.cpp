@@ -588,3 +588,36 @@ TEST_CASE("an environment's rotation turns its radiance, its density and its sam
 
 }  // namespace
 }  // namespace lamina
+
+TEST_CASE("under green light a fluorescent sphere glows red as its BRDF's matrix says, a plain one stays green") {
+  // A directional green light 30 degrees from the camera's axis: at the sphere's centre pixel the
+  // radiance is F(wi, wo) (0, E, 0) cos 30, F the matrix a fluorescent base makes of the BRDF.
+  const std::string light =
+      R"({"name": "green", "type": "directional", "direction": [-0.5, 0, -0.8660254], "color": [0, 1, 0], "intensity": 3})";
+  const int size = 33;
+  for (const char* name : {"fluorescent_card", "orange_card"}) {
+    CAPTURE(name);
+    const std::string file = std::string(name) == "fluorescent_card"
+                                 ? "../../../examples/materials/fluorescent_card.json"
+                                 : "../../../examples/fluorescence/orange_card.json";
+    const Scene scene = render_scene_text(sphere_scene(file, name, light));
+    const render::RenderScene prepared(scene, test::repository_policy());
+    render::RenderOptions options;
+    options.width = options.height = size;
+    options.samples = 16;
+    const auto image = render::render(prepared, scene.cameras[0], options);
+    const vec3 centre = image.radiance[size_t(size / 2) * size_t(size) + size_t(size / 2)];
+    const cpu::Evaluator material =
+        test::load_evaluator(test::source_dir() / "tests/data/render" / std::filesystem::path(file));
+    const vec3 wi(0.5f, 0.0f, 0.8660254f), wo(0.0f, 0.0f, 1.0f);
+    const vec3 expected = material.eval(ShadingContext{}, wi, wo, vec3(0.0f, 3.0f, 0.0f)) * wi.z;
+    INFO("rendered " << centre.x << " " << centre.y << " " << centre.z << ", expected " << expected.x << " "
+                     << expected.y << " " << expected.z);
+    for (int c = 0; c < 3; ++c)
+      CHECK(std::abs(double(centre[c]) - double(expected[c])) <= 0.02 * double(expected.y) + 1e-6);
+    if (std::string(name) == "fluorescent_card")
+      CHECK(centre.x > centre.y);  // the body's red outshines the light's own green
+    else
+      CHECK(centre.x == 0.0f);  // without fluorescence nothing red comes of green light
+  }
+}
