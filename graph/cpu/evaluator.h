@@ -66,7 +66,8 @@ class ShadingPoint {
   // was `weight` (so that weight . eval(wi, wo, L) = eval_adjoint(wi, wo, weight) . L). Without
   // fluorescence, eval(wi, wo) * weight.
   glm::vec3 eval_adjoint(glm::vec3 wi, glm::vec3 wo, glm::vec3 weight) const;
-  // Whether a fluorescent base moves light between channels here.
+  // Whether the material has a fluorescent base anywhere (substrate/fluorescent): then F may be a
+  // matrix, and a renderer should use eval with the light's colour and eval_adjoint.
   bool fluorescent() const;
   float pdf(glm::vec3 wi, glm::vec3 wo) const;
   // eval and pdf together, bit for bit what the two return apart, sharing the work.

@@ -711,7 +711,14 @@ Module generate(std::span<const Program> programs, const Options& options) {
   const std::string film_macro = films
                                      ? "#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n"
                                      : "#define LAMINA_FILM_FRESNEL(mode, cos_i, film_eta, eta, k, depth) vec3(1.0)\n";
-  const std::string kernels = needed_kernels(kernel_sources(), film_macro + code);
+  // A fluorescent base's light of a colour only in a module with one (stack.glsl, lamina_stack_glows).
+  bool fluorescence = false;
+  for (const Program& p : programs)
+    for (const StackEntry& e : p.stack)
+      fluorescence =
+          fluorescence || (e.kind == kernels::LAMINA_SUBSTRATE && e.model == kernels::LAMINA_SUBSTRATE_FLUORESCENT);
+  const std::string macros = film_macro + "#define LAMINA_FLUORESCENCE " + (fluorescence ? "true" : "false") + "\n";
+  const std::string kernels = needed_kernels(kernel_sources(), macros + code);
   std::string table;
   if (kernels.find("lamina_albedo_texel") != std::string::npos) table = albedo_table(programs, module);
   s << header(programs, module, options) << "\n";
@@ -721,7 +728,7 @@ Module generate(std::span<const Program> programs, const Options& options) {
   // blend the most parts and the longest blend; a point (LaminaPoint) holds them.
   s << "#define LAMINA_STACK " << stack_length << "\n#define LAMINA_PARTS " << parts_length << "\n#define LAMINA_BLEND "
     << blend_length << "\n"
-    << film_macro << "\n";
+    << macros << "\n";
   s << table << kernels;
   s << code;
   module.source = s.str();

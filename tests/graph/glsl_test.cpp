@@ -735,6 +735,8 @@ TEST_CASE("glsl: a fluorescent material's module has functions for coloured ligh
       CHECK_MESSAGE((source.find("_eval_adjoint(vec3 wi, vec3 wo, vec3 weight, LaminaPoint point)") !=
                      std::string::npos) == glows,
                     p.name);
+      // And only its module keeps the light's split and the matrices (LAMINA_FLUORESCENCE).
+      CHECK_MESSAGE((source.find("#define LAMINA_FLUORESCENCE true\n") != std::string::npos) == glows, p.name);
     }
   }
 }

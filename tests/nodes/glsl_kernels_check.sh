@@ -216,12 +216,13 @@ for target in 330 450 es300; do
       450) echo "#version 450 core" ;;
       es300) printf '%s\n' "#version 300 es" "precision highp float;" "precision highp int;" ;;
     esac
-    # The macros the back end defines: the lengths of the stack's arrays and the film's Fresnel term
-    # (common.glsl defines the others).
+    # The macros the back end defines: the lengths of the stack's arrays, the film's Fresnel term and
+    # whether a base may fluoresce (common.glsl defines the others).
     echo "#define LAMINA_STACK 4"
     echo "#define LAMINA_PARTS 2"
     echo "#define LAMINA_BLEND 3"
     echo "#define LAMINA_FILM_FRESNEL lamina_fresnel_film"
+    echo "#define LAMINA_FLUORESCENCE true"
     # and the dielectric albedo table's reader (energy.glsl): a texture of every combination.
     echo "uniform highp usampler2D lamina_dielectric_albedo_table;"
     etas=$(sed -n 's/^const int LAMINA_ALBEDO_ETAS = \([0-9]*\);.*/\1/p' "$kernels/albedo_grid.glsl")
