@@ -16,8 +16,9 @@
 
 namespace lamina {
 
-// A constant parameter's value in one channel (a single number counts for all three); nullopt when
-// linked or not given (a texture's values are scaled back at shading time instead).
+// A constant parameter's value in one channel (a single number counts for all three), `fallback` when
+// the file leaves it out; nullopt when it is linked (a texture's values are scaled back at shading
+// time instead).
 static std::optional<double> fluorescent_constant(const NodeCheckContext& ctx, const char* param, int channel,
                                                   double fallback) {
   const Value* v = ctx.get(param);
@@ -41,6 +42,7 @@ static void check_fluorescent(const NodeCheckContext& ctx) {
   for (const Column& c : columns) {
     std::optional<double> total = fluorescent_constant(ctx, "albedo", c.channel, 0.0);
     std::string terms = "albedo[" + std::to_string(c.channel) + "]";
+    const char* named = "albedo";  // the error's pointer: the last shift the file gives
     for (const char* s : c.shifts) {
       std::optional<double> shift = fluorescent_constant(ctx, s, 0, 0.0);
       if (!total || !shift) {
@@ -49,9 +51,10 @@ static void check_fluorescent(const NodeCheckContext& ctx) {
       }
       *total += *shift;
       terms += std::string(" + ") + s;
+      if (ctx.get(s)) named = s;
     }
     if (total && *total > 1.0 + 1e-9)
-      ctx.error(c.shifts.back(),
+      ctx.error(named,
                 "the " + std::string(c.name) + " light this base returns, " + terms + " = " + number_text(*total) +
                     ", exceeds the light it receives",
                 "keep " + terms + " at most 1 (each channel returns at most what it receives)");

@@ -11,6 +11,7 @@
 #include "graph/cpu/reference.h"
 #include "nodes/kernels/kernels.h"
 #include "tests/graph/cpu_test_support.h"
+#include "tests/test_support.h"
 
 namespace k = lamina::kernels;
 using glm::vec3;
@@ -176,7 +177,9 @@ TEST_CASE("fluorescent: the model agrees with the reference solver's walks under
   options.walks = int64_t(1) << (lamina::test::kSanitized ? 12 : 15);
   for (vec3 light : {kGreen, kBlue}) {
     options.light = light;
-    for (auto [theta_i, theta_o] : {std::pair{0.0, 30.0}, std::pair{40.0, 40.0}, std::pair{70.0, 20.0}}) {
+    for (const std::pair<double, double>& angles :
+         {std::pair{0.0, 30.0}, std::pair{40.0, 40.0}, std::pair{70.0, 20.0}}) {
+      const double theta_i = angles.first, theta_o = angles.second;  // clang 14 cannot capture a binding
       const vec3 wi = direction(theta_i, 0.0), wo = direction(theta_o, 180.0);
       const vec3 model = point.eval(wi, wo, light);
       const lamina::cpu::ReferenceEstimate ref = lamina::cpu::reference_eval(point, wi, wo, options);

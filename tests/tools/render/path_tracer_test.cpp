@@ -586,9 +586,6 @@ TEST_CASE("an environment's rotation turns its radiance, its density and its sam
   }
 }
 
-}  // namespace
-}  // namespace lamina
-
 TEST_CASE("under green light a fluorescent sphere glows red as its BRDF's matrix says, a plain one stays green") {
   // A directional green light 30 degrees from the camera's axis: at the sphere's centre pixel the
   // radiance is F(wi, wo) (0, E, 0) cos 30, F the matrix a fluorescent base makes of the BRDF.
@@ -621,3 +618,6 @@ TEST_CASE("under green light a fluorescent sphere glows red as its BRDF's matrix
       CHECK(centre.x == 0.0f);  // without fluorescence nothing red comes of green light
   }
 }
+
+}  // namespace
+}  // namespace lamina
