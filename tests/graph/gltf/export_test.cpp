@@ -79,7 +79,9 @@ const Json& find_material(const Json& gltf, const std::string& name) { return na
 }  // namespace
 
 TEST_CASE("glTF export: a material file becomes a sheet of spheres with the exact graph in our extension") {
-  for (const auto& file : test::example_files()) {
+  // Under the sanitisers every second example: the round trip's sweep (offset 1) exports the others'
+  // sheets.
+  for (const auto& file : test::swept_example_files(0)) {
     CAPTURE(file);
     CheckedFile checked = check_file(file);
     REQUIRE(checked.ok());
