@@ -27,7 +27,7 @@ int run_eval(const EvalOptions& o) {
   if (!wi || !wo) return kExitInvalid;
   glm::vec3 light(1.0f);
   if (!o.light.empty()) {
-    auto numbers = parse_numbers("--light", o.light, 3);
+    auto numbers = parse_numbers("--light", o.light, 3, "R,G,B, e.g. 0,1,0");
     if (!numbers) return kExitInvalid;
     light = glm::vec3((*numbers)[0], (*numbers)[1], (*numbers)[2]);
     if (light.x < 0.0f || light.y < 0.0f || light.z < 0.0f || !std::isfinite(light.x + light.y + light.z)) {

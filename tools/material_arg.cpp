@@ -107,12 +107,15 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
-std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count) {
+std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count,
+                                                std::string_view form) {
   static const char* const kShapes[] = {"", "X", "U,V", "X,Y,Z"};
-  std::string shape = count < 4 ? kShapes[count] : std::to_string(count) + " numbers";
+  std::string written(form);
+  if (written.empty())
+    written = (count < 4 ? std::string(kShapes[count]) : std::to_string(count) + " numbers") + ", e.g. " +
+              (count == 2 ? "0.5,0.5" : "0.3,0,1");
   auto fail = [&](const std::string& why) {
-    print_problem(std::string(option) + ": " + why + " (write " + shape + ", e.g. " +
-                  (count == 2 ? "0.5,0.5" : "0.3,0,1") + ")");
+    print_problem(std::string(option) + ": " + why + " (write " + written + ")");
     return std::nullopt;
   };
   std::vector<float> values;

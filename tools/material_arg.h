@@ -43,7 +43,10 @@ int load_programs(const MaterialArg& arg, bool all_when_unnamed, std::vector<Pro
 
 // Parses `count` comma-separated finite numbers ("0.3,0,1"; spaces around them are allowed).
 // On a mistake prints "lamina: OPTION: ..." on stderr and returns nothing.
-std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count);
+// `form` is what the message asks for ("R,G,B, e.g. 0,1,0"); empty: the form of a uv, a direction or
+// a list of `count` numbers.
+std::optional<std::vector<float>> parse_numbers(std::string_view option, std::string_view text, size_t count,
+                                                std::string_view form = {});
 
 // A direction from "X,Y,Z", normalised; a zero vector is a mistake (printed, nothing returned).
 std::optional<glm::vec3> parse_direction(std::string_view option, std::string_view text);

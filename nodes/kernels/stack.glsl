@@ -19,13 +19,13 @@ LAMINA_FN float lamina_effective_slope(float own, float above, bool clamp_lower)
 // One interface of the recursion f(i)(L, V) = f_i(L, V) + T_i f(i+1)(L', V') a_i t_i (course
 // sec. 3.1, Elek eq. 2). Returns f_i, the Torrance-Sparrow reflection of the interface with F_i
 // at V.H (the Fresnel term `fresnel` selects: lamina_fresnel_dielectric). l_below and v_below
-// receive L' and V' (z <= 0 when either cannot refract: then nothing below contributes), carry
-// receives T_i a_i t_i with T_i = 1 - F_i, a_i the Beer-Lambert absorption (Elek eq. 3) and
-// t_i = (1 - G_i) + T_i G_i (Elek eq. 4). F_i and T_i are RGB: a dielectric's are grey, a coated
-// boundary's need not be.
+// receive L' and V' (z <= 0 when either cannot refract: then nothing below contributes), passed
+// receives T_i t_i with T_i = 1 - F_i and t_i = (1 - G_i) + T_i G_i (Elek eq. 4), 0 where nothing
+// below contributes; the caller applies the layer's Beer-Lambert absorption a_i (Elek eq. 3) along
+// L' and V', together or one way each (a glowing stack's light changes colour in between). F_i and
+// T_i are RGB: a dielectric's are grey, a coated boundary's need not be.
 LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution, int fresnel_mode, float m,
-                                     vec3 sigma, float thickness, LAMINA_OUT(vec3) l_below,
-                                     LAMINA_OUT(vec3) v_below, LAMINA_OUT(vec3) carry) {
+                                     LAMINA_OUT(vec3) l_below, LAMINA_OUT(vec3) v_below, LAMINA_OUT(vec3) passed) {
   vec3 h = normalize(l + v);
   float v_dot_h = lamina_symmetric_dot(l, v, h);
   vec3 fresnel = vec3(lamina_fresnel_dielectric(fresnel_mode, v_dot_h, eta));
@@ -33,10 +33,10 @@ LAMINA_FN vec3 lamina_interface_eval(vec3 l, vec3 v, float eta, int distribution
   float g = g_microfacet(distribution, l.z, v.z, h.z, v_dot_h, m);
   l_below = refract_down(l, eta);
   v_below = refract_down(v, eta);
-  carry = vec3(0.0f);
+  passed = vec3(0.0f);
   if (l_below.z > 0.0f && v_below.z > 0.0f) {
     vec3 transmittance = vec3(1.0f) - fresnel;
-    carry = transmittance * absorption(sigma, thickness, l_below.z, v_below.z) * tir_compensation(transmittance, g);
+    passed = transmittance * tir_compensation(transmittance, g);
   }
   return torrance_sparrow(fresnel, d, g, l.z, v.z);
 }
@@ -1374,16 +1374,18 @@ LAMINA_FN vec3 lamina_stack_response(int count, LAMINA_IN_ARRAY(LaminaEntry) ent
     } else if (kind == LAMINA_LAYER) {
       vec3 lb = vec3(0.0f);
       vec3 vb = vec3(0.0f);
-      vec3 c = vec3(0.0f);
+      vec3 passed = vec3(0.0f);
       s[i].f = lamina_interface_eval(l, v, params[i].eta, entries[i].distribution, entries[i].fresnel, params[i].m,
-                                     params[i].absorption, params[i].thickness, lb, vb, c) *
+                                     lb, vb, passed) *
                lit;
       s[i].l_on = lamina_from_entry(params[i], lb);
       s[i].v_on = lamina_from_entry(params[i], vb);
       s[i].z_on = vec2(lb.z, vb.z);
-      // The absorption along L' goes down with the light; c keeps the rest (c is 0 where it is).
+      // a_i: in a glowing stack the absorption along L' goes down with the light and the carry keeps
+      // the one along V'; otherwise both in one exponential.
       vec3 down = glows ? one_way_absorption(params[i].absorption, params[i].thickness, lb.z) : vec3(1.0f);
-      s[i].carry = glows ? c / max(down, vec3(1.0e-30f)) : c;
+      s[i].carry = passed * (glows ? one_way_absorption(params[i].absorption, params[i].thickness, vb.z)
+                                   : absorption(params[i].absorption, params[i].thickness, lb.z, vb.z));
       s[i].lit_on = lit * down;
     } else if (kind == LAMINA_MIX) {
       s[i].l_on = l;

@@ -76,6 +76,23 @@ TEST_CASE("lamina eval prints the library's f and pdf in plain text and as JSON"
   CHECK(report["pdf"].get<float>() == expected.pdf);
 }
 
+TEST_CASE("lamina eval --light prints what a fluorescent material returns of light of that colour") {
+  const char* const card = "examples/materials/fluorescent_card.json";
+  const glm::vec3 wi = glm::normalize(glm::vec3(0.3f, 0.1f, 1.0f));
+  const glm::vec3 wo = glm::normalize(glm::vec3(-0.4f, 0.0f, 1.0f));
+  cpu::Evaluator evaluator = library_evaluator(card);
+  const glm::vec3 green(0.0f, 1.0f, 0.0f);
+  const glm::vec3 expected = evaluator.eval(ShadingContext{}, wi, wo, green);
+  REQUIRE(expected.r > 0.0f);  // green light comes back partly red: the card glows
+  auto r = test::run_cli(std::string("eval ") + card + " --wi 0.3,0.1,1 --wo -0.4,0,1 --light 0,1,0 --json",
+                         test::source_dir());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  auto report = nlohmann::json::parse(r.out);
+  for (int c = 0; c < 3; ++c) CHECK(report["f"][c].get<float>() == expected[c]);
+  CHECK(report["pdf"].get<float>() == evaluator.eval_pdf(ShadingContext{}, wi, wo).pdf);
+}
+
 TEST_CASE("lamina eval gives exactly 0 for a light below the horizon") {
   auto r = test::run_cli(std::string("eval ") + kCarPaint + " --wi 0.5,0,-0.2 --wo 0,0,1 --json", test::source_dir());
   INFO(r.err);
@@ -103,6 +120,9 @@ TEST_CASE("lamina eval rejects mistakes with exit 2 and nothing on stdout") {
        "car_paint.json:/materials: no material named 'carpaint' (did you mean 'car_paint'?"},
       {std::string("eval ") + kInvalid + " --wi 0,0,1 --wo 0,0,1", "ior_below_one.json:/materials/0/nodes/1/ior: "},
       {"eval" + car + " --wo 0,0,1", "--wi is required"},
+      {"eval" + car + " --wi 0,0,1 --wo 0,0,1 --light 1,-1,0", "--light 1,-1,0: expected three finite numbers >= 0"},
+      {"eval" + car + " --wi 0,0,1 --wo 0,0,1 --light 1,1", "--light: expected 3 numbers, got 2 in '1,1' (write R,G,B"},
+      {"eval" + car + " --wi 0,0,1 --wo 0,0,1 --light nan,0,0", "--light: 'nan'"},
   };
   for (const Case& c : cases) {
     CAPTURE(c.args);
