@@ -49,6 +49,7 @@ using namespace glm;
 #include "nodes/kernels/film.glsl"
 #include "nodes/kernels/microfacet.glsl"
 #include "nodes/kernels/diffuse.glsl"
+#include "nodes/kernels/flakes.glsl"
 #include "nodes/kernels/layer.glsl"
 #include "nodes/kernels/albedo_grid.glsl"
 // clang-format on

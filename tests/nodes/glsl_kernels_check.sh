@@ -84,8 +84,13 @@ void main() {
   bool inside = false;
   ivec4 texels = ivec4(0);
   f += lamina_slope(c, true) + lamina_effective_slope(m, 0.1f, true) + lamina_symmetric_dot(w, v, w);
-  s += lamina_interface_eval(w, v, 1.5f, 0, 1, m, vec3(0.1f), 0.5f, lb, vb, carry) + lb + vb + carry;
+  s += lamina_interface_eval(w, v, 1.5f, 0, 1, m, lb, vb, carry) + lb + vb + carry;
   s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), vec3(1.5f), 300.0f, 2, 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
+  // flakes
+  s += lamina_flake_glitter(w, v, 0.5f, vec3(0.9f), 0.1f, 0.2f, m);
+  vec3 flake_q = lamina_flake_shade_q(0.5f, vec3(0.9f), 0.1f, 0.2f, 1.5f);
+  s += lamina_flake_shade(w, v, 0.5f, 0.1f, 0.2f, vec3(0.5f), flake_q) + flake_q;
+  f += lamina_flake_orientation(c, m) + lamina_flake_depth(c, 0.5f, 0.1f, 0.2f) + lamina_flake_depth_factor(c);
   s += lamina_fresnel_film(LAMINA_FRESNEL_FILM_RGB, c, vec3(1.4f), vec3(0.2f), vec3(3.0f), 300.0f);
   s += lamina_fresnel_base(LAMINA_FRESNEL_FILM_SPECTRAL, c, vec3(1.5f), vec3(0.0f), vec3(2.4f, 2.5f, 2.6f), 250.0f);
   s += lamina_selection_step(v, 1.5f, 0, vec3(0.1f), 0.5f, f);
