@@ -97,7 +97,8 @@ Classification classify_path(const Graph& g, const Path& path) {
   std::string top_text = (top_r.smooth() ? "smooth top (" : "rough top (") + top_r.text() + ")";
   if (base.metal) {
     Roughness base_r = roughness_of(g, path.substrate);
-    std::string base_text = (base_r.smooth() ? "smooth metal base (" : "rough metal base (") + base_r.text() + ")";
+    std::string base_text =
+        (base_r.smooth() ? "smooth " : "rough ") + base.metal_noun + " base (" + base_r.text() + ")";
     std::string reason = top_text + " over " + base_text;
     if (top_r.smooth()) return result(base_r.smooth() ? "d" : "e", reason);
     return result(base_r.smooth() ? "f" : "g", reason);

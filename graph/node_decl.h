@@ -148,8 +148,11 @@ struct NodeDecl {
   // A texture node whose outputs depend on the shading point, not only on its inputs: never folded
   // into constants at compile time, even when every input is constant.
   bool varies = false;
-  // Facts for classification: a substrate that is a metal base; a medium's tint (none: clear).
+  // Facts for classification: a substrate that is a metal base (the course's metal classes d to g),
+  // what the reason calls it ("metal", or "flake" for a paint of metal or mica flakes); a medium's
+  // tint (none: clear).
   bool metal = false;
+  std::string metal_noun = "metal";
   NodeTint tint = nullptr;
   // How glTF carries the node beyond the lossless extension (README, "glTF 2.0").
   std::string gltf = "baked into the fitted PBR fallback";

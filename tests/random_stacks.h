@@ -117,6 +117,10 @@ class RandomStacks {
       node(id, R"("type": "substrate/lambert", "albedo": )" + albedo() + tilt);
     } else if (u < 0.3) {
       node(id, R"("type": "substrate/fluorescent", )" + fluorescence() + tilt);
+    } else if (u < 0.36) {
+      const std::string paint = flake_paint();
+      const std::string slope = roughness();
+      node(id, R"("type": "substrate/flake_paint", )" + paint + ", " + slope + distribution() + tilt);
     } else if (u < 0.55) {
       const std::string a = albedo();
       node(id, R"("type": "substrate/oren_nayar", "albedo": )" + a + R"(, "sigma": )" + scalar(0.0, 1.2) + tilt);
@@ -160,6 +164,19 @@ class RandomStacks {
     return R"("albedo": [)" + number(r) + ", " + number(g) + ", " + number(b) + R"(], "green_to_red": )" +
            number(green_to_red) + R"(, "blue_to_red": )" + number(blue_out * to_red) + R"(, "blue_to_green": )" +
            number(blue_out * (1.0 - to_red));
+  }
+
+  // A flake paint's base, coverage, flake colour and transmittance: a colour within a flake's bound
+  // (it reflects at most what it does not pass, as the checker demands), or, one time in four, a
+  // Voronoi cell's colour with a transmittance that may exceed the bound, which the kernels clamp.
+  std::string flake_paint() {
+    const std::string a = albedo();
+    const std::string base = R"("base_color": )" + a + R"(, "coverage": )" + scalar(0.0, 4.0);
+    if (chance(0.25))
+      return base + R"(, "flake_color": "@)" + voronoi() + R"(.color", "flake_transmittance": )" + scalar(0.0, 1.0);
+    const double t = uniform(0.0, 1.0);
+    const std::string flake = colour(0.0, 0.999 * (1.0 - t));
+    return base + R"(, "flake_color": )" + flake + R"(, "flake_transmittance": )" + number(t);
   }
 
   // One interface or substrate in four is tilted (from the second stream): by a constant normal up

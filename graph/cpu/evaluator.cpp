@@ -324,12 +324,14 @@ std::vector<float> ShadingPoint::lobe_weights(vec3 wo) const {
 LobeFlags ShadingPoint::lobe_flags(size_t lobe) const {
   const int i = evaluator_->lobe_entry_.at(lobe);
   LobeFlags flags;
-  if (k::lamina_is_microfacet_lobe(evaluator_->entries_[size_t(i)])) {
+  const k::LaminaEntry& e = evaluator_->entries_[size_t(i)];
+  // A flake paint is both: its glitter a glossy lobe, its shade diffuse.
+  const bool flakes = e.kind == k::LAMINA_SUBSTRATE && e.model == k::LAMINA_SUBSTRATE_FLAKE_PAINT;
+  if (k::lamina_is_microfacet_lobe(e) || flakes) {
     flags.glossy = true;
     flags.specular = params()[i].m < kSpecularSlope;
-  } else {
-    flags.diffuse = true;
   }
+  if (!k::lamina_is_microfacet_lobe(e)) flags.diffuse = true;
   return flags;
 }
 

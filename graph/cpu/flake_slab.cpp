@@ -40,7 +40,7 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& x, std::vect
 // the flakes' orientation P(beta): the kernels' (nodes/kernels/fresnel.glsl, flakes.glsl).
 double fresnel(double c, double eta) { return double(kernels::fresnel_dielectric(float(c), float(eta))); }
 double orientation(double cos_beta, double m) {
-  return double(kernels::lamina_flake_orientation(float(cos_beta), float(m)));
+  return double(kernels::lamina_flake_orientation(0, float(cos_beta), float(m)));  // Beckmann
 }
 
 // <|cos alpha|>(mu) of eq. 10: the flakes' mean projected area along a direction of cosine mu

@@ -274,6 +274,8 @@ class MaterialEmitter final : public OpWriter {
       << at << "sigma = " << float_literal(q.sigma) << ";\n"
       << at << "absorption = " << vec3_literal(q.absorption) << ";\n"
       << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
+      << at << "flake = " << vec3_literal(q.flake) << ";\n"
+      << at << "flake_paint = " << vec2_literal(q.flake_paint) << ";\n"
       << at << "n = " << vec3_literal(q.n) << ";\n"
       << at << "k = " << vec3_literal(q.k) << ";\n"
       << at << "film_eta = " << vec3_literal(q.film_eta) << ";\n"

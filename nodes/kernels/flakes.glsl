@@ -11,54 +11,128 @@
 // absorption depth at normal incidence, m the Beckmann RMS slope of the flakes' normals.
 
 // P(beta): flake normals per solid angle, integral 1 over the hemisphere (the paper's
-// Pr = 2 pi P(beta) sin beta d beta): Beckmann's D times cos beta. cos_beta is |n.z|.
-LAMINA_FN float lamina_flake_orientation(float cos_beta, float m) { return d_beckmann(cos_beta, m) * cos_beta; }
+// Pr = 2 pi P(beta) sin beta d beta): a microfacet distribution D (normalised over the projected
+// area) times cos beta. cos_beta is |n.z|.
+LAMINA_FN float lamina_flake_orientation(int distribution, float cos_beta, float m) {
+  return d_microfacet(distribution, cos_beta, m) * cos_beta;
+}
 
-// tau(theta) h of eq. 21 with eq. 29's <1 - t_p>(theta) = (1 - t_p) cos theta (flakes close to the
-// paint's plane): kappa h / cos theta + D <S> h (1 - t_p).
-LAMINA_FN float lamina_flake_depth(float cos_theta, float coverage, float transmittance, float kappa_h) {
-  return kappa_h / max(cos_theta, LAMINA_MIN_DENOM) + coverage * (1.0f - transmittance);
+// The angular part of a flake's reflection between binder directions l and v (z > 0), eq. 36's
+// P(beta) / (4 cos l cos v), beta the angle of their half vector from the normal.
+LAMINA_FN float lamina_flake_lobe(vec3 l, vec3 v, int distribution, float m) {
+  if (l.z <= 0.0f || v.z <= 0.0f) return 0.0f;
+  return lamina_flake_orientation(distribution, normalize(l + v).z, m) / (4.0f * l.z * v.z);
+}
+
+// tau(theta) h of eq. 21 along direction w: kappa h / cos theta + D <S> h <1 - t_p>(theta) / cos theta.
+// The flakes' mean projected area <|cos alpha|> of eq. 10 is taken from Smith's identity for their
+// distribution, int D(n) (w.n)+ dn = cos theta (1 + Lambda(w)) (Heitz 2014, eq. 2), counting both
+// faces (the back faces add cos theta Lambda) and cos beta as 1 (flakes close to the paint's plane):
+// cos theta (1 + 2 Lambda(w)). Eq. 29 drops Lambda, which at grazing angles lets the glitter's lobe,
+// whose integral grows as 1 + Lambda, reflect more light than the flakes intercept.
+LAMINA_FN float lamina_flake_depth(vec3 w, float coverage, float transmittance, float kappa_h, int distribution,
+                                   float m) {
+  float lambda = max(lamina_smith_lambda(distribution, w, m), 0.0f);
+  return kappa_h / max(w.z, LAMINA_MIN_DENOM) + coverage * (1.0f - transmittance) * (1.0f + 2.0f * lambda);
 }
 
 // (1 - e^-x) / x: the share of a flake layer of optical depth x (both paths) that single
 // scattering sees, its expansion near 0.
 LAMINA_FN float lamina_flake_depth_factor(float x) { return x < 1.0e-4f ? 1.0f - 0.5f * x : (1.0f - exp(-x)) / x; }
 
-// Glitter, eq. 36 inside the boundary: D <S> h r_p P(beta) (1 - e^-x) / (4 x cos l cos v), x the
-// depths along l and v and beta the angle of their half vector from the normal.
+// Glitter, eq. 36 inside the boundary: D <S> h r_p (1 - e^-x) / x P(beta) / (4 cos l cos v), x the
+// depths along l and v.
 LAMINA_FN vec3 lamina_flake_glitter(vec3 l, vec3 v, float coverage, vec3 reflectance, float transmittance,
-                                    float kappa_h, float m) {
-  if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-  vec3 h = normalize(l + v);
-  float x = lamina_flake_depth(l.z, coverage, transmittance, kappa_h) +
-            lamina_flake_depth(v.z, coverage, transmittance, kappa_h);
-  return reflectance *
-         (coverage * lamina_flake_orientation(h.z, m) * lamina_flake_depth_factor(x) / (4.0f * l.z * v.z));
+                                    float kappa_h, int distribution, float m) {
+  float x = lamina_flake_depth(l, coverage, transmittance, kappa_h, distribution, m) +
+            lamina_flake_depth(v, coverage, transmittance, kappa_h, distribution, m);
+  return reflectance * (coverage * lamina_flake_depth_factor(x) * lamina_flake_lobe(l, v, distribution, m));
 }
 
 // Q of eq. 26 as the paper approximates it after eq. 28: what the flake layer and the boundary
 // above it return downwards of diffuse light from the substrate, halved,
-//   Q = D<S>h / 2 int (1 - e^-2 tau h) / (2 tau h) r_p sin 2 theta d theta
-//       + 1/2 int e^-2 tau h r_{1/eta}(theta) sin 2 theta d theta,
+//   Q = D<S>h / 2 int (1 - e^-2 tau h) / (2 tau h) r_p sin 2 theta d theta      (the flakes' part)
+//       + 1/2 int e^-2 tau h r_{1/eta}(theta) sin 2 theta d theta               (the boundary's),
 // with sin 2 theta d theta = d(cos^2 theta): 32 midpoints in cos^2 theta. eta: binder over air.
-LAMINA_FN vec3 lamina_flake_shade_q(float coverage, vec3 reflectance, float transmittance, float kappa_h, float eta) {
-  float flakes = 0.0f;
-  float boundary = 0.0f;
+LAMINA_FN vec3 lamina_flake_q_flakes(float coverage, vec3 reflectance, float transmittance, float kappa_h,
+                                     int distribution, float m) {
+  float sum = 0.0f;
   for (int k = 0; k < 32; ++k) {
     float c = sqrt((float(k) + 0.5f) / 32.0f);
-    float tau = 2.0f * lamina_flake_depth(c, coverage, transmittance, kappa_h);
-    flakes += lamina_flake_depth_factor(tau);
-    boundary += exp(-tau) * fresnel_dielectric(c, 1.0f / eta);
+    vec3 w = vec3(sqrt(1.0f - c * c), 0.0f, c);
+    sum += lamina_flake_depth_factor(2.0f * lamina_flake_depth(w, coverage, transmittance, kappa_h, distribution, m));
   }
-  return (0.5f / 32.0f) * (coverage * reflectance * flakes + vec3(boundary));
+  return (0.5f / 32.0f) * coverage * sum * reflectance;
+}
+
+LAMINA_FN float lamina_flake_q_boundary(float coverage, float transmittance, float kappa_h, int distribution, float m,
+                                        float eta) {
+  float sum = 0.0f;
+  for (int k = 0; k < 32; ++k) {
+    float c = sqrt((float(k) + 0.5f) / 32.0f);
+    vec3 w = vec3(sqrt(1.0f - c * c), 0.0f, c);
+    sum += exp(-2.0f * lamina_flake_depth(w, coverage, transmittance, kappa_h, distribution, m)) *
+           fresnel_dielectric(c, 1.0f / eta);
+  }
+  return (0.5f / 32.0f) * sum;
 }
 
 // Shade, eq. 28 inside the boundary: the substrate's r_s / pi through the flakes both ways,
 // e^-(tau(l) + tau(v)) h, raised by the light the layer sends back to it, 1 / (1 - 2 r_s Q).
-LAMINA_FN vec3 lamina_flake_shade(vec3 l, vec3 v, float coverage, float transmittance, float kappa_h, vec3 substrate,
-                                  vec3 q) {
+LAMINA_FN vec3 lamina_flake_shade(vec3 l, vec3 v, float coverage, float transmittance, float kappa_h,
+                                  int distribution, float m, vec3 substrate, vec3 q) {
   if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-  float x = lamina_flake_depth(l.z, coverage, transmittance, kappa_h) +
-            lamina_flake_depth(v.z, coverage, transmittance, kappa_h);
+  float x = lamina_flake_depth(l, coverage, transmittance, kappa_h, distribution, m) +
+            lamina_flake_depth(v, coverage, transmittance, kappa_h, distribution, m);
   return substrate * (exp(-x) * LAMINA_INV_PI) / max(vec3(1.0f) - 2.0f * substrate * q, vec3(LAMINA_MIN_DENOM));
+}
+
+// --- substrate/flake_paint: the fast model under a layer -------------------------------------------
+// Without binder absorption; the boundary above is the layer's, whose bounces the composition sums,
+// so Q keeps only the flakes' part. A flake reflects at most what it does not pass (the checker
+// refuses more for constants; a texture's values are taken so here). The shade splits into its
+// value at normal incidence, a Lambertian term (the energy-conserving model's diffuse part), and
+// the rest, which the flakes' longer paths at grazing angles take away (part of the lobe).
+
+LAMINA_FN vec3 lamina_flake_reflectance(vec3 reflectance, float transmittance) {
+  return min(reflectance, vec3(1.0f - transmittance));
+}
+
+// The shade's Lambertian part: the shade at normal incidence both ways.
+LAMINA_FN vec3 lamina_flake_paint_diffuse(float coverage, vec3 reflectance, float transmittance, vec3 substrate,
+                                          int distribution, float m) {
+  vec3 up = vec3(0.0f, 0.0f, 1.0f);
+  vec3 r = lamina_flake_reflectance(reflectance, transmittance);
+  vec3 q = lamina_flake_q_flakes(coverage, r, transmittance, 0.0f, distribution, m);
+  return lamina_flake_shade(up, up, coverage, transmittance, 0.0f, distribution, m, substrate, q);
+}
+
+// A flake paint's BRDF inside the binder: glitter (its reflectance clamped) + shade, the shade's
+// Lambertian part `diffuse` (lamina_flake_paint_diffuse) scaled by the longer paths' attenuation.
+LAMINA_FN vec3 lamina_flake_paint_eval(vec3 l, vec3 v, float coverage, vec3 reflectance, float transmittance,
+                                       vec3 diffuse, int distribution, float m) {
+  if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+  vec3 r = lamina_flake_reflectance(reflectance, transmittance);
+  vec3 up = vec3(0.0f, 0.0f, 1.0f);
+  float x0 = 2.0f * lamina_flake_depth(up, coverage, transmittance, 0.0f, distribution, m);
+  float x = lamina_flake_depth(l, coverage, transmittance, 0.0f, distribution, m) +
+            lamina_flake_depth(v, coverage, transmittance, 0.0f, distribution, m);
+  return r * (coverage * lamina_flake_depth_factor(x) * lamina_flake_lobe(l, v, distribution, m)) +
+         diffuse * exp(x0 - x);
+}
+
+// The glitter's albedo at normal incidence, D <S> h r_p (1 - e^-x) / x (its lobe integrates to
+// about 1 there).
+LAMINA_FN vec3 lamina_flake_glitter_albedo(float coverage, vec3 reflectance, float transmittance, int distribution,
+                                           float m) {
+  vec3 up = vec3(0.0f, 0.0f, 1.0f);
+  float x0 = 2.0f * lamina_flake_depth(up, coverage, transmittance, 0.0f, distribution, m);
+  return lamina_flake_reflectance(reflectance, transmittance) * (coverage * lamina_flake_depth_factor(x0));
+}
+
+// The share of a flake paint's draws its glitter takes, by the glitter's albedo against the whole
+// paint's (`albedo`, the glitter's plus pi times the diffuse part): the rest are cosine-weighted.
+LAMINA_FN float lamina_flake_glitter_share(vec3 albedo, vec3 diffuse) {
+  float total = lamina_luminance(albedo);
+  return total > 0.0f ? clamp(lamina_luminance(albedo - LAMINA_PI * diffuse) / total, 0.0f, 1.0f) : 0.0f;
 }

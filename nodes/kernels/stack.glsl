@@ -208,6 +208,7 @@ const int LAMINA_SUBSTRATE_LAMBERT = 0;     // lamina_lambert_eval
 const int LAMINA_SUBSTRATE_OREN_NAYAR = 1;  // oren_nayar
 const int LAMINA_SUBSTRATE_CONDUCTOR = 2;   // lamina_conductor_eval
 const int LAMINA_SUBSTRATE_FLUORESCENT = 3; // lamina_fluorescent_albedo: Lambert re-radiating across channels
+const int LAMINA_SUBSTRATE_FLAKE_PAINT = 4; // lamina_flake_paint_eval: flakes in a binder over a diffuse base
 
 // One entry of a compiled stack: what it is, where it is. Constant for a material.
 struct LaminaEntry {
@@ -225,15 +226,17 @@ struct LaminaEntry {
 
 // An entry's inputs at one shading point, clamped to their declared ranges (a texture cannot push a
 // parameter outside the model's domain). What each member holds:
-//   colour0  lambert, oren_nayar, fluorescent: albedo; conductor: n (absolute)
-//   colour1  conductor: k (absolute)
+//   colour0  lambert, oren_nayar, fluorescent: albedo; conductor: n (absolute); flake paint: the base's
+//            albedo
+//   colour1  conductor: k (absolute); flake paint: the flakes' reflectance
 //   colour2  layer: the medium's absorption per micrometre; thin film: the film's index (absolute)
 //   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, a select's index,
 //               oren_nayar's sigma;
 //            y: roughness (layer, conductor; an angle or a slope, per `degrees`); a select step's
 //               threshold;
 //            z: a layer's medium thickness in micrometres; a thin film's thickness in nm; a select's
-//               coverage;
+//               coverage; a flake paint's flake transmittance;
+//            x, y, z of a flake paint: its flakes' coverage D <S> h, roughness, transmittance;
 //            xyz: a fluorescent base's re-radiated shares green to red, blue to red, blue to green;
 //            w: a select's stack count
 //   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
@@ -258,14 +261,16 @@ struct LaminaParams {
   float m_above;    // the slope the layer above passes down (Elek sec. 3), 0 at the top
   float ior;        // layer: absolute index below its interface
   float eta;        // layer: the relative index ior / n_above
-  float m;          // layer, conductor: the slope after Elek's clamp to the layers above
+  float m;          // layer, conductor, flake paint: the slope after Elek's clamp to the layers above
   float thickness;  // layer
   float weight;     // mix
   float share;      // the product of the mix weights on the path from the surface (1 without mixes): 0 where
                     // a mix (a select's chain over one cell) shows none of the entry, which is then skipped
   float sigma;      // oren_nayar
   vec3 absorption;  // layer
-  vec3 albedo;      // lambert, oren_nayar
+  vec3 albedo;      // lambert, oren_nayar; flake paint: its albedo as lobe selection estimates it
+  vec3 flake;       // flake paint: the flakes' reflectance
+  vec2 flake_paint; // and their coverage D <S> h and transmittance
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
   vec3 film_eta;    // thin film: the film's index relative to the medium above, per channel
@@ -1160,6 +1165,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.sigma = 0.0f;
     p.absorption = vec3(0.0f);
     p.albedo = vec3(0.0f);
+    p.flake = vec3(0.0f);
+    p.flake_paint = vec2(0.0f);
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
     p.film_eta = vec3(1.0f);
@@ -1203,6 +1210,17 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.film_depth = inputs[i].scalars.z * p.n_above;
       float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
       p.m = lamina_widened_slope(own, inputs[i].normal);
+    } else if (entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT) {
+      // The flakes' orientation spread is clamped to the layers above like any lobe's.
+      float own = lamina_effective_slope(lamina_slope(inputs[i].scalars.y, degrees), p.m_above, clamp_lower);
+      p.m = lamina_widened_slope(own, inputs[i].normal);
+      p.flake = inputs[i].colour1;
+      p.flake_paint = vec2(inputs[i].scalars.x, inputs[i].scalars.z);
+      p.diffuse = lamina_flake_paint_diffuse(p.flake_paint.x, p.flake, p.flake_paint.y, inputs[i].colour0,
+                                             entries[i].distribution, p.m);
+      // Its albedo at normal incidence, which lobe selection reads.
+      p.albedo = lamina_flake_glitter_albedo(p.flake_paint.x, p.flake, p.flake_paint.y, entries[i].distribution, p.m) +
+                 LAMINA_PI * p.diffuse;
     } else if (LAMINA_FLUORESCENCE && entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT) {
       // Its matrix, and as albedo what it returns of white light (the row sums), which the
       // selection and every white-light query read as a Lambert base's.
@@ -1245,6 +1263,12 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
 }
 
+// The share of a flake paint's draws its glitter takes (lamina_flake_glitter_share); 0 for any other entry.
+LAMINA_FN float lamina_flake_share(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p) {
+  if (e.kind != LAMINA_SUBSTRATE || e.model != LAMINA_SUBSTRATE_FLAKE_PAINT) return 0.0f;
+  return lamina_flake_glitter_share(p.albedo, p.diffuse);
+}
+
 // Whether an entry is a lobe (every interface and substrate; a mix only weighs its stacks).
 LAMINA_FN bool lamina_is_lobe(LAMINA_IN(LaminaEntry) e) { return e.kind != LAMINA_MIX; }
 
@@ -1258,6 +1282,8 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
   if (e.model == LAMINA_SUBSTRATE_CONDUCTOR)
     return lamina_conductor_eval(l, v, p.n, p.k, p.film_eta, p.film_depth, e.distribution, e.fresnel, p.m);
   if (e.model == LAMINA_SUBSTRATE_OREN_NAYAR) return oren_nayar(l, v, p.albedo, p.sigma);
+  if (e.model == LAMINA_SUBSTRATE_FLAKE_PAINT)
+    return lamina_flake_paint_eval(l, v, p.flake_paint.x, p.flake, p.flake_paint.y, p.diffuse, e.distribution, p.m);
   return lamina_lambert_eval(l, v, p.albedo);
 }
 
@@ -1705,8 +1731,12 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
       float n_frame = params[i].n_above;
       vec3 w_frame = lamina_to_frame(params, a, w[i]);
       vec3 w_own = lamina_to_entry(params[i], w[i]);
+      // A flake paint draws its glitter as a microfacet lobe and its shade as a diffuse one.
+      bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
+      float glitter = flakes ? lamina_flake_share(entries[i], params[i]) : 0.0f;
+      bool facets = lamina_is_microfacet_lobe(entries[i]);
       float density = 0.0f;
-      if (lamina_is_microfacet_lobe(entries[i])) {
+      if (facets || flakes) {
         float through = w_frame.z > 0.0f && w_own.z > 0.0f ? jacobian[i] : 0.0f;
         vec3 outer = lamina_to_frame(params, a, wi);
         vec3 spread = vec3(0.0f);
@@ -1714,8 +1744,10 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
           spread = lamina_to_entry(params[i], lamina_from_frame(params, a, lamina_spread_source(outer, n_frame)));
         density = lamina_microfacet_lobe_pdf(entries[i].distribution, params[i].m, v[i], w_own, through, spread,
                                              n_frame);
-      } else if (w_frame.z > 0.0f) {
-        density = lamina_diffuse_lobe_pdf(w_frame, jacobian[i], n_frame);
+      }
+      if (!facets) {
+        float diffuse = w_frame.z > 0.0f ? lamina_diffuse_lobe_pdf(w_frame, jacobian[i], n_frame) : 0.0f;
+        density = glitter * density + (1.0f - glitter) * diffuse;
       }
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       pdf += weight[i] * ((1.0f - forward) * density + forward * wi.z * LAMINA_INV_PI);
@@ -1761,17 +1793,21 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
       // reflects into can be drawn. The forward part's are drawn in the shading frame, outside.
       int a = above[i];
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
+      // A flake paint's glitter takes the draws with u.x below its share, its shade the others.
+      bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
+      float glitter = flakes ? lamina_flake_share(entries[i], params[i]) : 0.0f;
       if (u.x < forward) {
         w = lamina_sample_diffuse_lobe(vec2(u.x / forward, u.y), 1.0f);
         inside_cone = false;
-      } else if (lamina_is_microfacet_lobe(entries[i])) {
+      } else if (lamina_is_microfacet_lobe(entries[i]) || (flakes && u.x < glitter)) {
         bool own_inside = true;
-        vec3 own = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i],
-                                                 vec2((u.x - forward) / (1.0f - forward), u.y), 1.0f, own_inside);
+        vec2 u_lobe = flakes ? vec2(u.x / glitter, u.y) : vec2((u.x - forward) / (1.0f - forward), u.y);
+        vec3 own = lamina_sample_microfacet_lobe(entries[i].distribution, params[i].m, v[i], u_lobe, 1.0f, own_inside);
         vec3 in_frame = own.z > 0.0f ? lamina_to_frame(params, a, lamina_from_entry(params[i], own)) : vec3(0.0f);
         w = lamina_from_frame(params, a, lamina_leave_or_spread(in_frame, params[i].n_above, inside_cone));
       } else {
-        w = lamina_from_frame(params, a, lamina_sample_diffuse_lobe(u, params[i].n_above));
+        vec2 u_lobe = flakes ? vec2((u.x - glitter) / (1.0f - glitter), u.y) : u;
+        w = lamina_from_frame(params, a, lamina_sample_diffuse_lobe(u_lobe, params[i].n_above));
       }
     }
   }

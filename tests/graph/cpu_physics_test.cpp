@@ -355,6 +355,7 @@ const std::map<std::string, double>& documented_excess() {
       {"house_paint", 1.199 * 1.03},               // 89 deg, B
       {"lavender_lepidolite", 2.086 * 1.03},       // 0 deg, R: silver glitter under IOR 1.56
       {"patina_map_copper", 1.950 * 1.03},         // 0 deg, R, where the patina is thin
+      {"pearlescent_white", 1.415 * 1.03},         // 89 deg, R: T at V.H, over a white base
       {"procedural_patina_copper", 1.680 * 1.03},  // 0 deg, R, bare copper under its tarnish
       {"red_lacquer", 1.689 * 1.03},               // 89 deg, R
       {"silver_paint", 2.399 * 1.03},              // 0 deg, R: silver under IOR 1.7
@@ -1082,6 +1083,9 @@ std::optional<Stack> read_stack(const std::string& text) {
     // Elek's algorithm has no fluorescent base: its light through a stack is checked against
     // Beer-Lambert's law and the reference solver (tests/nodes/substrate_fluorescent_test.cpp).
     if (type == "substrate/fluorescent") return std::nullopt;
+    // Nor flakes: a flake paint is checked against the fast model's equations and the full model
+    // (tests/nodes/substrate_flake_paint_test.cpp).
+    if (type == "substrate/flake_paint") return std::nullopt;
   }
   Stack stack;
   if (material.contains("clamp_lower_roughness")) stack.clamp = material.at("clamp_lower_roughness").get<bool>();

@@ -20,12 +20,7 @@ using test::kPi;
 // Fewer nodes and orders under the sanitisers, which look for memory errors, not precision.
 cpu::FlakeSlabOptions options() {
   cpu::FlakeSlabOptions o;
-  if (test::kSanitized) {
-    o.nodes = 12;
-    o.modes = 48;
-    o.azimuths = 192;
-    o.doublings = 10;
-  }
+  if (test::kSanitized) o = cpu::FlakeSlabOptions::coarse();
   return o;
 }
 
@@ -132,9 +127,10 @@ double fast_brdf(const cpu::FlakeSlab& slab, double mu_i, double mu_o, double ph
   const float kappa = float(slab.binder_absorption), m = float(slab.flake_slope);
   const glm::vec3 rp(float(slab.flake_reflectance)), rs(float(slab.substrate_albedo));
   const glm::vec3 l = refracted(mu_i, kPi, slab.eta), v = refracted(mu_o, phi, slab.eta);
-  const glm::vec3 q = kn::lamina_flake_shade_q(coverage, rp, tp, kappa, float(slab.eta));
-  const glm::vec3 inside = kn::lamina_flake_glitter(l, v, coverage, rp, tp, kappa, m) +
-                           kn::lamina_flake_shade(l, v, coverage, tp, kappa, rs, q);
+  const glm::vec3 q = kn::lamina_flake_q_flakes(coverage, rp, tp, kappa, 0, m) +
+                      glm::vec3(kn::lamina_flake_q_boundary(coverage, tp, kappa, 0, m, float(slab.eta)));
+  const glm::vec3 inside = kn::lamina_flake_glitter(l, v, coverage, rp, tp, kappa, 0, m) +
+                           kn::lamina_flake_shade(l, v, coverage, tp, kappa, 0, m, rs, q);
   return (1.0 - fresnel(mu_i, slab.eta)) * (1.0 - fresnel(mu_o, slab.eta)) / (slab.eta * slab.eta) * double(inside.x);
 }
 

@@ -87,10 +87,15 @@ void main() {
   s += lamina_interface_eval(w, v, 1.5f, 0, 1, m, lb, vb, carry) + lb + vb + carry;
   s += lamina_conductor_eval(w, v, vec3(0.2f), vec3(3.0f), vec3(1.5f), 300.0f, 2, 2, m) + lamina_lambert_eval(w, v, vec3(0.5f));
   // flakes
-  s += lamina_flake_glitter(w, v, 0.5f, vec3(0.9f), 0.1f, 0.2f, m);
-  vec3 flake_q = lamina_flake_shade_q(0.5f, vec3(0.9f), 0.1f, 0.2f, 1.5f);
-  s += lamina_flake_shade(w, v, 0.5f, 0.1f, 0.2f, vec3(0.5f), flake_q) + flake_q;
-  f += lamina_flake_orientation(c, m) + lamina_flake_depth(c, 0.5f, 0.1f, 0.2f) + lamina_flake_depth_factor(c);
+  s += lamina_flake_glitter(w, v, 0.5f, vec3(0.9f), 0.1f, 0.2f, 0, m);
+  vec3 flake_q = lamina_flake_q_flakes(0.5f, vec3(0.9f), 0.1f, 0.2f, 1, m) + lamina_flake_q_boundary(0.5f, 0.1f, 0.2f, 2, m, 1.5f);
+  s += lamina_flake_shade(w, v, 0.5f, 0.1f, 0.2f, 0, m, vec3(0.5f), flake_q) + flake_q;
+  f += lamina_flake_orientation(1, c, m) + lamina_flake_depth(w, 0.5f, 0.1f, 0.2f, 0, m) + lamina_flake_depth_factor(c);
+  f += lamina_flake_lobe(w, v, 2, m);
+  vec3 flake_diffuse = lamina_flake_paint_diffuse(0.5f, vec3(0.9f), 0.1f, vec3(0.5f), 0, m);
+  s += lamina_flake_paint_eval(w, v, 0.5f, vec3(0.9f), 0.1f, flake_diffuse, 0, m) + lamina_flake_reflectance(s, 0.2f);
+  s += lamina_flake_glitter_albedo(0.5f, vec3(0.9f), 0.1f, 1, m);
+  f += lamina_flake_glitter_share(vec3(0.5f), flake_diffuse);
   s += lamina_fresnel_film(LAMINA_FRESNEL_FILM_RGB, c, vec3(1.4f), vec3(0.2f), vec3(3.0f), 300.0f);
   s += lamina_fresnel_base(LAMINA_FRESNEL_FILM_SPECTRAL, c, vec3(1.5f), vec3(0.0f), vec3(2.4f, 2.5f, 2.6f), 250.0f);
   s += lamina_selection_step(v, 1.5f, 0, vec3(0.1f), 0.5f, f);
@@ -135,6 +140,7 @@ void main() {
   int chosen = lamina_stack_choose(LAMINA_STACK, weight, c);
   s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(LAMINA_STACK, entries, params, sv, chosen, v_uv);
   s += lamina_substrate_eval(entries[2], params[2], w, v);
+  f += lamina_flake_share(entries[2], params[2]);
   vec3 tx = vec3(0.0f);
   vec3 ty = vec3(0.0f);
   lamina_entry_tangents(params[2].normal, tx, ty);

@@ -1,0 +1,91 @@
+// substrate/flake_paint: metallic and pearlescent paint, a binder of randomly oriented mirror flakes
+// (aluminium chips, or mica coated with titanium dioxide) over a diffuse base, seen from inside the
+// binder: the fast model of Ershov, Kolchin and Myszkowski 2001, sec. 6 (nodes/kernels/flakes.glsl).
+// Its glitter is the flakes' reflection (eq. 36), its shade the base seen through them (eq. 32,
+// Lambertian without binder absorption). The binder's boundary above is a layer's interface, whose
+// reflections the composition adds; the full model it approximates is graph/cpu/flake_slab.h.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "graph/lowering.h"
+#include "graph/node_decl.h"
+#include "graph/number_text.h"
+#include "graph/value.h"
+#include "nodes/kernels/kernels.h"
+#include "nodes/microfacet_params.h"
+#include "nodes/normal_param.h"
+
+namespace lamina {
+
+// A flake reflects at most what it does not pass: r_p + t_p <= 1 per channel, for constant values
+// (a texture's are clamped so at shading time, lamina_stack_resolve).
+static void check_flake_paint(const NodeCheckContext& ctx) {
+  const Value* reflectance = ctx.get("flake_color");
+  const Value* transmittance = ctx.get("flake_transmittance");
+  if (!reflectance || !transmittance || std::holds_alternative<Link>(*reflectance) ||
+      std::holds_alternative<Link>(*transmittance))
+    return;
+  const std::vector<double> r = value_numbers(*reflectance), t = value_numbers(*transmittance);
+  if (t.size() != 1) return;
+  for (double channel : r)
+    if (channel + t[0] > 1.0 + 1e-9) {
+      ctx.error("flake_transmittance",
+                "a flake would reflect " + number_text(channel) + " and pass " + number_text(t[0]) +
+                    " of the light it receives, more than all of it",
+                "keep flake_color + flake_transmittance at most 1 in every channel");
+      return;
+    }
+}
+
+static void lower_flake_paint(NodeLowering& n) {
+  StackEntry& e = n.entry();
+  e.kind = kernels::LAMINA_SUBSTRATE;
+  e.model = kernels::LAMINA_SUBSTRATE_FLAKE_PAINT;
+  e.colour0 = n.input("base_color");
+  e.colour1 = n.input("flake_color");
+  e.scalar_x = n.input("coverage");
+  e.scalar_z = n.input("flake_transmittance");
+  lower_microfacet_params(n);
+  lower_normal_param(n);
+}
+
+NodeDecl declare_substrate_flake_paint() {
+  NodeDecl d;
+  d.type = "substrate/flake_paint";
+  d.kind = NodeKind::Substrate;
+  d.doc =
+      "metallic or pearlescent paint: mirror flakes in a binder over a diffuse base, under a layer's boundary "
+      "(Ershov et al. 2001's fast model)";
+  d.params.push_back(param("base_color", ValueType::Color)
+                         .range(0.0, 1.0)
+                         .links()
+                         .described("diffuse reflectance of the base under the flakes (linear RGB)"));
+  d.params.push_back(param("flake_color", ValueType::Color)
+                         .range(0.0, 1.0)
+                         .links()
+                         .described("a flake's reflectance, either face, any angle (aluminium about 0.9)"));
+  d.params.push_back(param("flake_transmittance", ValueType::Float)
+                         .range(0.0, 1.0)
+                         .links()
+                         .or_default(0.0)
+                         .described("share of the light a flake passes straight through (mica: most of it)"));
+  d.params.push_back(
+      param("coverage", ValueType::Float)
+          .range(0.0, 20.0)
+          .links()
+          .described("the flakes' total area per unit area of paint, D <S> h (1: as much flake as paint)"));
+  // The flakes' normals spread about the paint's as microfacets' do: roughness_deg or alpha is their
+  // RMS slope, distribution their law.
+  add_microfacet_params(d, false);
+  add_normal_param(d);
+  d.outputs.push_back({"stack", ValueType::Stack, "an opaque base, for a layer's base or a material's surface"});
+  // The course's metallic paint (class e) is flakes under a varnish.
+  d.metal = true;
+  d.metal_noun = "flake";
+  d.check = check_flake_paint;
+  d.lower = lower_flake_paint;
+  return d;
+}
+
+}  // namespace lamina
