@@ -235,7 +235,7 @@ struct LaminaEntry {
 //            y: roughness (layer, conductor; an angle or a slope, per `degrees`); a select step's
 //               threshold;
 //            z: a layer's medium thickness in micrometres; a thin film's thickness in nm; a select's
-//               coverage; a flake paint's flake transmittance;
+//               coverage;
 //            x, y, z of a flake paint: its flakes' coverage D <S> h, roughness, transmittance;
 //            xyz: a fluorescent base's re-radiated shares green to red, blue to red, blue to green;
 //            w: a select's stack count
@@ -1733,7 +1733,7 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
       vec3 w_own = lamina_to_entry(params[i], w[i]);
       // A flake paint draws its glitter as a microfacet lobe and its shade as a diffuse one.
       bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
-      float glitter = flakes ? lamina_flake_share(entries[i], params[i]) : 0.0f;
+      float glitter = lamina_flake_share(entries[i], params[i]);
       bool facets = lamina_is_microfacet_lobe(entries[i]);
       float density = 0.0f;
       if (facets || flakes) {
@@ -1795,7 +1795,7 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       // A flake paint's glitter takes the draws with u.x below its share, its shade the others.
       bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
-      float glitter = flakes ? lamina_flake_share(entries[i], params[i]) : 0.0f;
+      float glitter = lamina_flake_share(entries[i], params[i]);
       if (u.x < forward) {
         w = lamina_sample_diffuse_lobe(vec2(u.x / forward, u.y), 1.0f);
         inside_cone = false;

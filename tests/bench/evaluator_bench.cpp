@@ -240,20 +240,27 @@ void BM_eval_optics_thin_film_rgb(benchmark::State& s) { eval_scalar(s, thin_fil
 void BM_sample_optics_dielectric_layer(benchmark::State& s) { sample_scalar(s, dielectric_layer()); }
 void BM_sample_optics_thin_film_spectral(benchmark::State& s) { sample_scalar(s, thin_film_spectral()); }
 
-// A fluorescent base against a Lambert one under the same varnish (the fluorescent card's), in
-// white light (eval), in a coloured light (the response) and for the adjoint.
+// A fluorescent base and a flake paint (pearlescent_white's flakes) against a Lambert base under the
+// same varnish (the fluorescent card's); the fluorescent one in white light (eval), in a coloured
+// light (the response) and for the adjoint.
 const char* kVarnishOver = R"({"format": 1, "materials": [{"name": "card", "surface": "@card", "nodes": [
     {"id": "card", "type": "layer", "interface": "@varnish", "base": "@BASE"},
     {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 17.0},
     {"id": "lambert", "type": "substrate/lambert", "albedo": [0.55, 0.2, 0.04]},
     {"id": "pigment", "type": "substrate/fluorescent", "albedo": [0.55, 0.2, 0.04], "green_to_red": 0.4,
-     "blue_to_red": 0.3, "blue_to_green": 0.15}]}]})";
+     "blue_to_red": 0.3, "blue_to_green": 0.15},
+    {"id": "flakes", "type": "substrate/flake_paint", "base_color": [0.55, 0.2, 0.04], "flake_color": [0.3, 0.28, 0.24],
+     "flake_transmittance": 0.68, "coverage": 1.2, "roughness_deg": 9.0}]}]})";
 const lamina::cpu::Evaluator& coat_over_lambert() {
   static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "lambert").c_str());
   return e;
 }
 const lamina::cpu::Evaluator& coat_over_fluorescent() {
   static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "pigment").c_str());
+  return e;
+}
+const lamina::cpu::Evaluator& coat_over_flake_paint() {
+  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "flakes").c_str());
   return e;
 }
 void eval_light(benchmark::State& state, const lamina::cpu::Evaluator& e, bool adjoint) {
@@ -270,6 +277,9 @@ void eval_light(benchmark::State& state, const lamina::cpu::Evaluator& e, bool a
 }
 void BM_eval_optics_coat_over_lambert(benchmark::State& s) { eval_scalar(s, coat_over_lambert()); }
 void BM_eval_optics_coat_over_fluorescent(benchmark::State& s) { eval_scalar(s, coat_over_fluorescent()); }
+void BM_eval_optics_coat_over_flake_paint(benchmark::State& s) { eval_scalar(s, coat_over_flake_paint()); }
+void BM_sample_optics_coat_over_lambert(benchmark::State& s) { sample_scalar(s, coat_over_lambert()); }
+void BM_sample_optics_coat_over_flake_paint(benchmark::State& s) { sample_scalar(s, coat_over_flake_paint()); }
 void BM_eval_optics_coat_over_fluorescent_green_light(benchmark::State& s) {
   eval_light(s, coat_over_fluorescent(), false);
 }
@@ -280,6 +290,9 @@ void BM_eval_optics_coat_over_fluorescent_adjoint(benchmark::State& s) { eval_li
 BENCHMARK(BM_eval_optics_dielectric_layer);
 BENCHMARK(BM_eval_optics_coat_over_lambert);
 BENCHMARK(BM_eval_optics_coat_over_fluorescent);
+BENCHMARK(BM_eval_optics_coat_over_flake_paint);
+BENCHMARK(BM_sample_optics_coat_over_lambert);
+BENCHMARK(BM_sample_optics_coat_over_flake_paint);
 BENCHMARK(BM_eval_optics_coat_over_fluorescent_green_light);
 BENCHMARK(BM_eval_optics_coat_over_fluorescent_adjoint);
 BENCHMARK(BM_eval_optics_thin_film_spectral);

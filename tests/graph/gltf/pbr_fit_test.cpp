@@ -381,6 +381,7 @@ TEST_CASE("the fallback's normal texture puts back glitter facets' tilt, and onl
   gltf::FallbackOptions options;
   options.max_states = 2;
   bool aventurine = false;
+  int sanitised_bakes = 0;
   for (const auto& file : test::example_files()) {
     CAPTURE(file.filename().string());
     CheckedFile checked = check_file(file);
@@ -391,8 +392,9 @@ TEST_CASE("the fallback's normal texture puts back glitter facets' tilt, and onl
       tilts = tilts || (e.kind == kernels::LAMINA_SUBSTRATE && e.normal.linked());
     // Whether a normal texture is made is decided by the stack alone when nothing tilts: the
     // smallest bake shows it. The sanitisers look for memory errors, in the bake of normals: they
-    // visit the stacks that tilt, on the smallest bake; the statistics below are the optimised build's.
-    if (test::kSanitized && !tilts) continue;
+    // visit the first stack that tilts, on the smallest bake (the bake is the same code for every
+    // texture that tilts); the statistics below are the optimised build's.
+    if (test::kSanitized && (!tilts || sanitised_bakes++ > 0)) continue;
     options.bake_size = tilts && !test::kSanitized ? 256 : 64;
     const gltf::Fallback fallback = gltf::fit_fallback(program, options);
     if (!tilts) CHECK_FALSE(fallback.normal);

@@ -3,9 +3,12 @@
 // every example, its three estimators against each other, and its determinism.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <numbers>
+#include <vector>
 
 #include "graph/cpu/pcg32.h"
 #include "graph/cpu_test_support.h"
@@ -256,8 +259,13 @@ TEST_CASE(
     "BRDF sampling and MIS give the same image of every example under an environment map, and so does light sampling "
     "where its lobes are wide") {
   int light_sampled = 0;
-  for (const auto& file : test::swept_example_files(1)) {
+  // Under the sanitisers every second example, and the first whose lobes are wide if that half has
+  // none before it: which half holds one changes as examples are added.
+  const std::vector<std::filesystem::path> swept = test::swept_example_files(1);
+  for (const auto& file : test::example_files()) {
     const cpu::Evaluator material = test::load_evaluator(file);
+    const bool wide = peak_density(material) < 64.0f;
+    if (std::find(swept.begin(), swept.end(), file) == swept.end() && !(wide && light_sampled == 0)) continue;
     const std::string name = material.program().name;
     CAPTURE(name);
     const Scene scene =
@@ -265,7 +273,6 @@ TEST_CASE(
     const render::RenderScene prepared(scene, test::repository_policy());
     const int size = 12;
     const auto inside = interior_pixels(prepared, scene.cameras[0], size);
-    const bool wide = peak_density(material) < 64.0f;
     light_sampled += wide ? 1 : 0;
     MeanError found[3];
     for (int e = 0; e < 3; ++e) {
