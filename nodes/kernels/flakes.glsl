@@ -26,8 +26,10 @@ LAMINA_FN float lamina_flake_lobe(vec3 l, vec3 v, int distribution, float m) {
 
 // tau(theta) h of eq. 21 along direction w: kappa h / cos theta + D <S> h <1 - t_p>(theta) / cos theta.
 // The flakes' mean projected area <|cos alpha|> of eq. 10 is taken from Smith's identity for their
-// distribution, int D(n) (w.n)+ dn = cos theta (1 + Lambda(w)) (Heitz 2014, eq. 2), counting both
-// faces (the back faces add cos theta Lambda) and cos beta as 1 (flakes close to the paint's plane):
+// distribution, int D(n) (w.n)+ dn = cos theta (1 + Lambda(w)) (the normalisation of Smith's masking,
+// G1 = 1 / (1 + Lambda): Heitz 2014, "Understanding the masking-shadowing function"), counting
+// both faces (the back faces add cos theta Lambda, since int D(n) (w.n) dn = cos theta) and cos beta
+// as 1 (flakes close to the paint's plane):
 // cos theta (1 + 2 Lambda(w)). Eq. 29 drops Lambda, which at grazing angles lets the glitter's lobe,
 // whose integral grows as 1 + Lambda, reflect more light than the flakes intercept.
 LAMINA_FN float lamina_flake_depth(vec3 w, float coverage, float transmittance, float kappa_h, int distribution,
