@@ -326,8 +326,7 @@ LobeFlags ShadingPoint::lobe_flags(size_t lobe) const {
   LobeFlags flags;
   const k::LaminaEntry& e = evaluator_->entries_[size_t(i)];
   // A flake paint is both: its glitter a glossy lobe, its shade diffuse.
-  const bool flakes = e.kind == k::LAMINA_SUBSTRATE && e.model == k::LAMINA_SUBSTRATE_FLAKE_PAINT;
-  if (k::lamina_is_microfacet_lobe(e) || flakes) {
+  if (k::lamina_is_microfacet_lobe(e) || k::lamina_is_flake_paint(e)) {
     flags.glossy = true;
     flags.specular = params()[i].m < kSpecularSlope;
   }

@@ -125,15 +125,11 @@ class Walk {
     if (y.z <= 0.0f || x.z <= 0.0f) return 0.0f;
     if (e.model == k::LAMINA_SUBSTRATE_CONDUCTOR) return k::lamina_reflection_density(e.distribution, p.m, x, y);
     // A flake paint's glitter drawn as a conductor's lobe, its shade cosine-weighted.
-    const float glitter = glitter_share(e, p);
+    const float glitter = k::lamina_flake_share(e, p);
     if (glitter > 0.0f)
       return glitter * k::lamina_reflection_density(e.distribution, p.m, x, y) + (1.0f - glitter) * k::pdf_cosine(y.z);
     return k::pdf_cosine(y.z);
   }
-
-  // The share of a substrate's draws that follow its microfacet-like lobe beside a diffuse part:
-  // a flake paint's glitter; 0 for every other substrate.
-  static float glitter_share(const k::LaminaEntry& e, const k::LaminaParams& p) { return k::lamina_flake_share(e, p); }
 
   struct Scatter {
     vec3 y{0.0f};          // the light's side, pointing away from the vertex; 0 if the draw is lost
@@ -160,7 +156,7 @@ class Walk {
     if (x.z <= 0.0f) return out;
     const vec3 u = rng_.uniform3();
     vec3 y = k::sample_cosine(glm::vec2(u.x, u.y));
-    if (e.model == k::LAMINA_SUBSTRATE_CONDUCTOR || u.z < glitter_share(e, p)) {
+    if (e.model == k::LAMINA_SUBSTRATE_CONDUCTOR || u.z < k::lamina_flake_share(e, p)) {
       const vec3 h = k::sample_microfacet_normal(e.distribution, p.m, glm::vec2(u.x, u.y));
       const float x_h = glm::dot(x, h);
       y = x_h > 0.0f ? 2.0f * x_h * h - x : vec3(0.0f);

@@ -1263,10 +1263,14 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
   }
 }
 
+// Whether an entry is a flake paint, whose lobe is a glitter beside a diffuse shade.
+LAMINA_FN bool lamina_is_flake_paint(LAMINA_IN(LaminaEntry) e) {
+  return e.kind == LAMINA_SUBSTRATE && e.model == LAMINA_SUBSTRATE_FLAKE_PAINT;
+}
+
 // The share of a flake paint's draws its glitter takes (lamina_flake_glitter_share); 0 for any other entry.
 LAMINA_FN float lamina_flake_share(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p) {
-  if (e.kind != LAMINA_SUBSTRATE || e.model != LAMINA_SUBSTRATE_FLAKE_PAINT) return 0.0f;
-  return lamina_flake_glitter_share(p.albedo, p.diffuse);
+  return lamina_is_flake_paint(e) ? lamina_flake_glitter_share(p.albedo, p.diffuse) : 0.0f;
 }
 
 // Whether an entry is a lobe (every interface and substrate; a mix only weighs its stacks).
@@ -1732,7 +1736,7 @@ LAMINA_FN float lamina_stack_pdf(int count, LAMINA_IN_ARRAY(LaminaEntry) entries
       vec3 w_frame = lamina_to_frame(params, a, w[i]);
       vec3 w_own = lamina_to_entry(params[i], w[i]);
       // A flake paint draws its glitter as a microfacet lobe and its shade as a diffuse one.
-      bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
+      bool flakes = lamina_is_flake_paint(entries[i]);
       float glitter = lamina_flake_share(entries[i], params[i]);
       bool facets = lamina_is_microfacet_lobe(entries[i]);
       float density = 0.0f;
@@ -1794,7 +1798,7 @@ LAMINA_FN vec3 lamina_stack_sample(int count, LAMINA_IN_ARRAY(LaminaEntry) entri
       int a = above[i];
       float forward = lamina_forward_sampling_share(entries, params, i, v[i]);
       // A flake paint's glitter takes the draws with u.x below its share, its shade the others.
-      bool flakes = entries[i].kind == LAMINA_SUBSTRATE && entries[i].model == LAMINA_SUBSTRATE_FLAKE_PAINT;
+      bool flakes = lamina_is_flake_paint(entries[i]);
       float glitter = lamina_flake_share(entries[i], params[i]);
       if (u.x < forward) {
         w = lamina_sample_diffuse_lobe(vec2(u.x / forward, u.y), 1.0f);

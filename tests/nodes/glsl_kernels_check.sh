@@ -141,6 +141,7 @@ void main() {
   s += lamina_stack_eval(LAMINA_STACK, entries, params, w, v) + lamina_stack_sample(LAMINA_STACK, entries, params, sv, chosen, v_uv);
   s += lamina_substrate_eval(entries[2], params[2], w, v);
   f += lamina_flake_share(entries[2], params[2]);
+  if (lamina_is_flake_paint(entries[2])) f += 1.0f;
   vec3 tx = vec3(0.0f);
   vec3 ty = vec3(0.0f);
   lamina_entry_tangents(params[2].normal, tx, ty);
