@@ -168,12 +168,21 @@ class RandomStacks {
 
   // A flake paint's base, coverage, flake colour and transmittance: a colour within a flake's bound
   // (it reflects at most what it does not pass, as the checker demands), or, one time in four, a
-  // Voronoi cell's colour with a transmittance that may exceed the bound, which the kernels clamp.
+  // Voronoi cell's colour with a transmittance that may exceed the bound, which the kernels clamp;
+  // or, one time in four, coated flakes (a film up to 600 nm of any index, either fold).
   std::string flake_paint() {
     const std::string a = albedo();
     const std::string base = R"("base_color": )" + a + R"(, "coverage": )" + scalar(0.0, 4.0);
-    if (chance(0.25))
+    const double u = uniform(0.0, 1.0);
+    if (u < 0.25)
       return base + R"(, "flake_color": "@)" + voronoi() + R"(.color", "flake_transmittance": )" + scalar(0.0, 1.0);
+    if (u < 0.5) {
+      static const char* integrations[] = {"spectral", "rgb"};
+      const std::string thickness = scalar(0.0, 600.0);
+      const std::string film = colour(1.0, 3.0);
+      return base + R"(, "film_thickness_nm": )" + thickness + R"(, "film_ior": )" + film + R"(, "integration": ")" +
+             integrations[pick(2)] + "\"";
+    }
     const double t = uniform(0.0, 1.0);
     const std::string flake = colour(0.0, 0.999 * (1.0 - t));
     return base + R"(, "flake_color": )" + flake + R"(, "flake_transmittance": )" + number(t);

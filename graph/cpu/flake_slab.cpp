@@ -43,9 +43,22 @@ double orientation(double cos_beta, double m) {
   return double(kernels::lamina_flake_orientation(0, float(cos_beta), float(m)));  // Beckmann
 }
 
-// <|cos alpha|>(mu) of eq. 10: the flakes' mean projected area along a direction of cosine mu
-// (the orientations beyond tan beta = 6 m weigh under e^-36).
-double projected_area(double mu, double m) {
+// A flake's reflectance and straight transmittance for light at cosine c to its normal: the
+// slab's constants, or a coated flake's film (Airy's sum at one wavelength, film.glsl, with the
+// binder on both sides) and what it does not reflect.
+double flake_reflectance(const FlakeSlab& slab, double c) {
+  if (slab.film_ior <= 0.0) return slab.flake_reflectance;
+  return double(kernels::lamina_film_channel(false, 0, float(c), float(slab.film_ior / slab.eta), glm::vec2(1.0f, 0.0f),
+                                             float(slab.film_nm * slab.eta), float(slab.wavelength_nm)));
+}
+double flake_transmittance(const FlakeSlab& slab, double c) {
+  return slab.film_ior <= 0.0 ? slab.flake_transmittance : 1.0 - flake_reflectance(slab, c);
+}
+
+// <|cos alpha| (1 - t_p(alpha))>(mu) of eq. 10: the flakes' mean projected area along a direction
+// of cosine mu that does not pass light (the orientations beyond tan beta = 6 m weigh under e^-36).
+double projected_area(double mu, const FlakeSlab& slab) {
+  const double m = slab.flake_slope;
   std::vector<double> beta, weight;
   gauss_legendre(48, 0.0, std::min(0.5 * kPi, std::atan(6.0 * m)), beta, weight);
   const int azimuths = 128;
@@ -54,9 +67,11 @@ double projected_area(double mu, double m) {
   for (size_t b = 0; b < beta.size(); ++b) {
     const double p = orientation(std::cos(beta[b]), m) * std::sin(beta[b]) * weight[b];
     double ring = 0.0;
-    for (int a = 0; a < azimuths; ++a)
-      ring +=
+    for (int a = 0; a < azimuths; ++a) {
+      const double c =
           std::abs(std::cos(beta[b]) * mu + std::sin(beta[b]) * sin_theta * std::cos(2.0 * kPi * (a + 0.5) / azimuths));
+      ring += c * (1.0 - flake_transmittance(slab, c));
+    }
     sum += p * ring * (2.0 * kPi / azimuths);
     norm += p * 2.0 * kPi;
   }
@@ -170,6 +185,9 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
           "coverage must lie in [0, 20]");
   require(std::isfinite(slab.flake_slope) && slab.flake_slope >= 0.01 && slab.flake_slope <= 1.0,
           "flake_slope must lie in [0.01, 1]");
+  require(slab.film_ior == 0.0 || (std::isfinite(slab.film_ior) && slab.film_ior >= 1.0 && slab.film_ior <= 4.0 &&
+                                   std::isfinite(slab.film_nm) && slab.film_nm >= 0.0 && slab.wavelength_nm > 0.0),
+          "a coated flake's film_ior must lie in [1, 4], its film_nm be >= 0 and its wavelength > 0");
   require(slab.flake_reflectance >= 0.0 && slab.flake_transmittance >= 0.0 &&
               slab.flake_reflectance + slab.flake_transmittance <= 1.0,
           "a flake's reflectance and transmittance must be >= 0 with a sum <= 1");
@@ -199,13 +217,12 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
   const double part = std::ldexp(1.0, -options.doublings);
   const double coverage = slab.coverage * part, absorption = slab.binder_absorption * part;
   std::vector<double> depth(n);
-  for (size_t i = 0; i < n; ++i)
-    depth[i] =
-        (absorption + coverage * (1.0 - slab.flake_transmittance) * projected_area(mu_[i], slab.flake_slope)) / mu_[i];
+  for (size_t i = 0; i < n; ++i) depth[i] = (absorption + coverage * projected_area(mu_[i], slab)) / mu_[i];
 
   // Each order's coefficient of P(beta) over the azimuth difference, for light reflected (out
   // going up) and transmitted (out going on down) by flakes: a flake reflects from direction in
-  // to out when its normal is the half vector out - in.
+  // to out when its normal is the half vector out - in, whose length is twice the cosine of the
+  // angle of incidence on the flake (where a coated flake's reflectance is taken).
   const int modes = options.modes, azimuths = options.azimuths;
   std::vector<double> cosines(size_t(azimuths) * size_t(modes));
   for (int a = 0; a < azimuths; ++a)
@@ -225,7 +242,8 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
           const double hz = side == 0 ? mu_[i] + mu_[j] : mu_[j] - mu_[i];
           const double length = std::sqrt(hx * hx + hy * hy + hz * hz);
           if (length < 1.0e-12) continue;  // straight on: not a reflection
-          const double p = orientation(std::abs(hz) / length, slab.flake_slope) * dphi;
+          const double p =
+              orientation(std::abs(hz) / length, slab.flake_slope) * flake_reflectance(slab, 0.5 * length) * dphi;
           if (p == 0.0) continue;
           auto& target = side == 0 ? reflected : transmitted;
           for (int m = 0; m < modes; ++m) target[size_t(m)][i * n + j] += p * cosines[size_t(a * modes + m)];
@@ -244,7 +262,7 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
     for (size_t i = 0; i < n; ++i) {
       t.delta[i] = std::exp(-depth[i]);
       for (size_t j = 0; j < n; ++j) {
-        const double scale = coverage * slab.flake_reflectance / (4.0 * mu_[i] * mu_[j]);
+        const double scale = coverage / (4.0 * mu_[i] * mu_[j]);
         r.kernel[i * n + j] = scale * reflected_depth(depth[i] + depth[j]) * reflected[size_t(m)][i * n + j];
         t.kernel[i * n + j] = scale * transmitted_depth(depth[j], depth[i]) * transmitted[size_t(m)][i * n + j];
       }

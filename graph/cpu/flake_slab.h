@@ -28,6 +28,12 @@ struct FlakeSlab {
   double flake_transmittance = 0.0;  // t_p: passes straight through a flake
   double binder_absorption = 0.0;    // kappa h: the binder's absorption depth at normal incidence
   double substrate_albedo = 0.5;     // r_s of the Lambertian substrate
+  // Coated flakes (film_ior > 0): each flake a lossless film of index film_ior (absolute) and
+  // thickness film_nm in the binder, reflecting Airy's reflectance at wavelength_nm for its angle
+  // of incidence and passing the rest; flake_reflectance and flake_transmittance are then unused.
+  double film_ior = 0.0;
+  double film_nm = 0.0;
+  double wavelength_nm = 525.0;
 };
 
 // The defaults keep a lossless slab's albedo within 3e-4 of 1 for flakes of slope 0.25 (64 orders

@@ -276,6 +276,7 @@ class MaterialEmitter final : public OpWriter {
       << at << "albedo = " << vec3_literal(q.albedo) << ";\n"
       << at << "flake = " << vec3_literal(q.flake) << ";\n"
       << at << "flake_paint = " << vec2_literal(q.flake_paint) << ";\n"
+      << at << "flake_depth = " << vec3_literal(q.flake_depth) << ";\n"
       << at << "n = " << vec3_literal(q.n) << ";\n"
       << at << "k = " << vec3_literal(q.k) << ";\n"
       << at << "film_eta = " << vec3_literal(q.film_eta) << ";\n"

@@ -337,7 +337,9 @@ FitResult fit_pbr(const cpu::Evaluator& material, const ShadingContext& ctx) {
   target.albedo = [&](glm::vec3 wo) { return point.albedo(wo); };
   const cpu::ShadingPoint::Stack stack = point.stack();
   const kernels::LaminaEntry& top = stack.entries[0];
-  if (top.kind == kernels::LAMINA_SUBSTRATE && kernels::lamina_is_film(top.fresnel)) {
+  // A thin-film surface (substrate/thin_film); coated flakes under a binder are baked as any paint.
+  if (top.kind == kernels::LAMINA_SUBSTRATE && top.model == kernels::LAMINA_SUBSTRATE_CONDUCTOR &&
+      kernels::lamina_is_film(top.fresnel)) {
     const kernels::LaminaParams& film = stack.params[0];
     PbrParams start;
     start.metallic = 1.0f;

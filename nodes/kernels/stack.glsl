@@ -229,14 +229,16 @@ struct LaminaEntry {
 //   colour0  lambert, oren_nayar, fluorescent: albedo; conductor: n (absolute); flake paint: the base's
 //            albedo
 //   colour1  conductor: k (absolute); flake paint: the flakes' reflectance
-//   colour2  layer: the medium's absorption per micrometre; thin film: the film's index (absolute)
+//   colour2  layer: the medium's absorption per micrometre; thin film, coated flakes: the film's
+//            index (absolute)
 //   scalars  x: a layer's ior (absolute, below its interface), a mix's weight, a select's index,
 //               oren_nayar's sigma;
 //            y: roughness (layer, conductor; an angle or a slope, per `degrees`); a select step's
 //               threshold;
 //            z: a layer's medium thickness in micrometres; a thin film's thickness in nm; a select's
 //               coverage;
-//            x, y, z of a flake paint: its flakes' coverage D <S> h, roughness, transmittance;
+//            x, y, z, w of a flake paint: its flakes' coverage D <S> h, roughness, transmittance,
+//               their film's thickness in nm (coated flakes);
 //            xyz: a fluorescent base's re-radiated shares green to red, blue to red, blue to green;
 //            w: a select's stack count
 //   normal   the normal the entry's interface or substrate is tilted to, in the shading frame
@@ -271,9 +273,10 @@ struct LaminaParams {
   vec3 albedo;      // lambert, oren_nayar; flake paint: its albedo as lobe selection estimates it
   vec3 flake;       // flake paint: the flakes' reflectance
   vec2 flake_paint; // and their coverage D <S> h and transmittance
+  vec3 flake_depth; // and the flake layer's optical depth at normal incidence, both ways
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
-  vec3 film_eta;    // thin film: the film's index relative to the medium above, per channel
+  vec3 film_eta;    // thin film, coated flakes: the film's index relative to the medium above, per channel
   float film_depth; // and its thickness in nm times the medium above's index (film.glsl)
   vec3 normal;      // the entry's frame in the shading frame (lamina_entry_normal): its normal
   vec3 frame_x;     // and its tangents (lamina_to_entry)
@@ -1136,6 +1139,16 @@ LAMINA_FN float lamina_mix_weight(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaInpu
 // The share of a mix of weight w that goes to its first stack (side 0) or its second (side 1).
 LAMINA_FN float lamina_side_share(float weight, int side) { return side == 0 ? 1.0f - weight : weight; }
 
+// A flake paint's flakes (flakes.glsl) from its entry and resolved parameters: plain, or coated
+// with the film its Fresnel mode names.
+LAMINA_FN LaminaFlakes lamina_entry_flakes(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaParams) p) {
+  LaminaFlakes f = lamina_flakes(p.flake_paint.x, p.flake, p.flake_paint.y, e.distribution, p.m);
+  f.film = e.fresnel;
+  f.film_eta = p.film_eta;
+  f.film_depth = p.film_depth;
+  return f;
+}
+
 // Every entry's parameters from its inputs, top down: a layer passes its index and its clamped
 // slope to the entries below it, a mix passes on what it received. share: the part of the surface
 // the stack covers (1 for a material's whole stack; a part's share of its blend, lamina_blend_*).
@@ -1167,6 +1180,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.albedo = vec3(0.0f);
     p.flake = vec3(0.0f);
     p.flake_paint = vec2(0.0f);
+    p.flake_depth = vec3(0.0f);
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
     p.film_eta = vec3(1.0f);
@@ -1216,11 +1230,14 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.m = lamina_widened_slope(own, inputs[i].normal);
       p.flake = inputs[i].colour1;
       p.flake_paint = vec2(inputs[i].scalars.x, inputs[i].scalars.z);
-      p.diffuse = lamina_flake_paint_diffuse(p.flake_paint.x, p.flake, p.flake_paint.y, inputs[i].colour0,
-                                             entries[i].distribution, p.m);
+      // Coated flakes' film (colour2 its absolute index, scalars.w its thickness in nm) in the binder above.
+      p.film_eta = max(inputs[i].colour2, vec3(1.0e-3f)) / p.n_above;
+      p.film_depth = inputs[i].scalars.w * p.n_above;
+      LaminaFlakes flakes = lamina_entry_flakes(entries[i], p);
+      p.flake_depth = lamina_flake_normal_depth(flakes);
+      p.diffuse = lamina_flake_paint_diffuse(flakes, inputs[i].colour0);
       // Its albedo at normal incidence, which lobe selection reads.
-      p.albedo = lamina_flake_glitter_albedo(p.flake_paint.x, p.flake, p.flake_paint.y, entries[i].distribution, p.m) +
-                 LAMINA_PI * p.diffuse;
+      p.albedo = lamina_flake_glitter_albedo(flakes) + LAMINA_PI * p.diffuse;
     } else if (LAMINA_FLUORESCENCE && entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT) {
       // Its matrix, and as albedo what it returns of white light (the row sums), which the
       // selection and every white-light query read as a Lambert base's.
@@ -1287,7 +1304,7 @@ LAMINA_FN vec3 lamina_substrate_eval(LAMINA_IN(LaminaEntry) e, LAMINA_IN(LaminaP
     return lamina_conductor_eval(l, v, p.n, p.k, p.film_eta, p.film_depth, e.distribution, e.fresnel, p.m);
   if (e.model == LAMINA_SUBSTRATE_OREN_NAYAR) return oren_nayar(l, v, p.albedo, p.sigma);
   if (e.model == LAMINA_SUBSTRATE_FLAKE_PAINT)
-    return lamina_flake_paint_eval(l, v, p.flake_paint.x, p.flake, p.flake_paint.y, p.diffuse, e.distribution, p.m);
+    return lamina_flake_paint_eval(l, v, lamina_entry_flakes(e, p), p.diffuse, p.flake_depth);
   return lamina_lambert_eval(l, v, p.albedo);
 }
 

@@ -240,9 +240,9 @@ void BM_eval_optics_thin_film_rgb(benchmark::State& s) { eval_scalar(s, thin_fil
 void BM_sample_optics_dielectric_layer(benchmark::State& s) { sample_scalar(s, dielectric_layer()); }
 void BM_sample_optics_thin_film_spectral(benchmark::State& s) { sample_scalar(s, thin_film_spectral()); }
 
-// A fluorescent base and a flake paint (pearlescent_white's flakes) against a Lambert base under the
-// same varnish (the fluorescent card's); the fluorescent one in white light (eval), in a coloured
-// light (the response) and for the adjoint.
+// A fluorescent base and flake paints (pearlescent_white's flakes; two_tone_pearl's coated ones,
+// either fold) against a Lambert base under the same varnish (the fluorescent card's); the
+// fluorescent one in white light (eval), in a coloured light (the response) and for the adjoint.
 const char* kVarnishOver = R"({"format": 1, "materials": [{"name": "card", "surface": "@card", "nodes": [
     {"id": "card", "type": "layer", "interface": "@varnish", "base": "@BASE"},
     {"id": "varnish", "type": "interface/dielectric", "ior": 1.5, "roughness_deg": 17.0},
@@ -250,17 +250,32 @@ const char* kVarnishOver = R"({"format": 1, "materials": [{"name": "card", "surf
     {"id": "pigment", "type": "substrate/fluorescent", "albedo": [0.55, 0.2, 0.04], "green_to_red": 0.4,
      "blue_to_red": 0.3, "blue_to_green": 0.15},
     {"id": "flakes", "type": "substrate/flake_paint", "base_color": [0.55, 0.2, 0.04], "flake_color": [0.3, 0.28, 0.24],
-     "flake_transmittance": 0.68, "coverage": 1.2, "roughness_deg": 9.0}]}]})";
+     "flake_transmittance": 0.68, "coverage": 1.2, "roughness_deg": 9.0},
+    {"id": "coated", "type": "substrate/flake_paint", "base_color": [0.55, 0.2, 0.04], "film_thickness_nm": 160,
+     "film_ior": [2.55, 2.65, 2.78], "integration": "FOLD", "coverage": 1.0, "roughness_deg": 10.0}]}]})";
+// The varnish over the base of that id, the coated flakes' film folded as `fold` says.
+lamina::cpu::Evaluator varnish_over(const char* base, const char* fold = "spectral") {
+  using lamina::glsl::replace_all;
+  return evaluator_from_text(replace_all(replace_all(kVarnishOver, "BASE", base), "FOLD", fold).c_str());
+}
 const lamina::cpu::Evaluator& coat_over_lambert() {
-  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "lambert").c_str());
+  static const auto e = varnish_over("lambert");
   return e;
 }
 const lamina::cpu::Evaluator& coat_over_fluorescent() {
-  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "pigment").c_str());
+  static const auto e = varnish_over("pigment");
   return e;
 }
 const lamina::cpu::Evaluator& coat_over_flake_paint() {
-  static const auto e = evaluator_from_text(lamina::glsl::replace_all(kVarnishOver, "BASE", "flakes").c_str());
+  static const auto e = varnish_over("flakes");
+  return e;
+}
+const lamina::cpu::Evaluator& coat_over_coated_flakes_spectral() {
+  static const auto e = varnish_over("coated", "spectral");
+  return e;
+}
+const lamina::cpu::Evaluator& coat_over_coated_flakes_rgb() {
+  static const auto e = varnish_over("coated", "rgb");
   return e;
 }
 void eval_light(benchmark::State& state, const lamina::cpu::Evaluator& e, bool adjoint) {
@@ -278,6 +293,10 @@ void eval_light(benchmark::State& state, const lamina::cpu::Evaluator& e, bool a
 void BM_eval_optics_coat_over_lambert(benchmark::State& s) { eval_scalar(s, coat_over_lambert()); }
 void BM_eval_optics_coat_over_fluorescent(benchmark::State& s) { eval_scalar(s, coat_over_fluorescent()); }
 void BM_eval_optics_coat_over_flake_paint(benchmark::State& s) { eval_scalar(s, coat_over_flake_paint()); }
+void BM_eval_optics_coat_over_coated_flakes_spectral(benchmark::State& s) {
+  eval_scalar(s, coat_over_coated_flakes_spectral());
+}
+void BM_eval_optics_coat_over_coated_flakes_rgb(benchmark::State& s) { eval_scalar(s, coat_over_coated_flakes_rgb()); }
 void BM_sample_optics_coat_over_lambert(benchmark::State& s) { sample_scalar(s, coat_over_lambert()); }
 void BM_sample_optics_coat_over_flake_paint(benchmark::State& s) { sample_scalar(s, coat_over_flake_paint()); }
 void BM_eval_optics_coat_over_fluorescent_green_light(benchmark::State& s) {
@@ -291,6 +310,8 @@ BENCHMARK(BM_eval_optics_dielectric_layer);
 BENCHMARK(BM_eval_optics_coat_over_lambert);
 BENCHMARK(BM_eval_optics_coat_over_fluorescent);
 BENCHMARK(BM_eval_optics_coat_over_flake_paint);
+BENCHMARK(BM_eval_optics_coat_over_coated_flakes_spectral);
+BENCHMARK(BM_eval_optics_coat_over_coated_flakes_rgb);
 BENCHMARK(BM_sample_optics_coat_over_lambert);
 BENCHMARK(BM_sample_optics_coat_over_flake_paint);
 BENCHMARK(BM_eval_optics_coat_over_fluorescent_green_light);

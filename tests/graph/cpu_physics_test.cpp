@@ -360,6 +360,7 @@ const std::map<std::string, double>& documented_excess() {
       {"red_lacquer", 1.689 * 1.03},               // 89 deg, R
       {"silver_paint", 2.399 * 1.03},              // 0 deg, R: silver under IOR 1.7
       {"sugar", 1.188 * 1.03},                     // 89 deg, R
+      {"two_tone_pearl", 1.259 * 1.03},            // 89 deg, G: T at V.H, coated flakes over grey
       {"sunstone", 1.918 * 1.03},                  // 9 deg, R: copper glitter under IOR 1.58
       // Test materials (tests/data/physics), for the same two reasons.
       {"blinn_glaze", 1.296 * 1.03},        // 89 deg, R
