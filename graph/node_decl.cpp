@@ -172,6 +172,16 @@ std::vector<std::string> NodeDecl::output_names() const {
 
 const Value* NodeCheckContext::get(std::string_view name) const { return node.find(name); }
 
+std::optional<double> NodeCheckContext::constant_channel(std::string_view name, int channel, double fallback) const {
+  const Value* v = get(name);
+  if (!v) return fallback;
+  if (std::holds_alternative<Link>(*v)) return std::nullopt;
+  const std::vector<double> numbers = value_numbers(*v);
+  if (numbers.size() == 1) return numbers[0];
+  if (numbers.size() == 3) return numbers[size_t(channel)];
+  return std::nullopt;
+}
+
 void NodeCheckContext::error(std::string_view param_name, std::string message, std::string hint) const {
   std::string pointer = param_name.empty() ? node_pointer : pointer_append(node_pointer, param_name);
   diagnostics.error(file, std::move(pointer), std::move(message), std::move(hint));

@@ -101,6 +101,10 @@ struct NodeCheckContext {
   const AssetPolicy& policy;  // how file parameters are followed (file_access.h)
 
   const Value* get(std::string_view name) const;
+  // A constant parameter's value in one channel (a single number counts for all three), `fallback`
+  // when the file leaves it out; nullopt when it is linked (a texture's values are taken in range at
+  // shading time instead).
+  std::optional<double> constant_channel(std::string_view name, int channel, double fallback) const;
   void error(std::string_view param, std::string message, std::string hint = {}) const;
 };
 

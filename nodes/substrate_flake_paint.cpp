@@ -34,21 +34,17 @@ static void check_flake_paint(const NodeCheckContext& ctx) {
   if (ctx.get("integration"))
     ctx.error("integration", "only coated flakes have a film whose spectrum is folded into RGB",
               "give film_thickness_nm and film_ior instead of flake_color, or leave integration out");
-  const Value* reflectance = ctx.get("flake_color");
-  const Value* transmittance = ctx.get("flake_transmittance");
-  if (!reflectance || !transmittance || std::holds_alternative<Link>(*reflectance) ||
-      std::holds_alternative<Link>(*transmittance))
-    return;
-  const std::vector<double> r = value_numbers(*reflectance), t = value_numbers(*transmittance);
-  if (t.size() != 1) return;
-  for (double channel : r)
-    if (channel + t[0] > 1.0 + 1e-9) {
+  const std::optional<double> transmittance = ctx.constant_channel("flake_transmittance", 0, 0.0);
+  for (int c = 0; c < 3 && transmittance; ++c) {
+    const std::optional<double> reflectance = ctx.constant_channel("flake_color", c, 0.0);
+    if (reflectance && *reflectance + *transmittance > 1.0 + 1e-9) {
       ctx.error("flake_transmittance",
-                "a flake would reflect " + number_text(channel) + " and pass " + number_text(t[0]) +
+                "a flake would reflect " + number_text(*reflectance) + " and pass " + number_text(*transmittance) +
                     " of the light it receives, more than all of it",
                 "keep flake_color + flake_transmittance at most 1 in every channel");
       return;
     }
+  }
 }
 
 static void lower_flake_paint(NodeLowering& n) {

@@ -16,20 +16,6 @@
 
 namespace lamina {
 
-// A constant parameter's value in one channel (a single number counts for all three), `fallback` when
-// the file leaves it out; nullopt when it is linked (a texture's values are scaled back at shading
-// time instead).
-static std::optional<double> fluorescent_constant(const NodeCheckContext& ctx, const char* param, int channel,
-                                                  double fallback) {
-  const Value* v = ctx.get(param);
-  if (!v) return fallback;
-  if (std::holds_alternative<Link>(*v)) return std::nullopt;
-  const std::vector<double> numbers = value_numbers(*v);
-  if (numbers.size() == 1) return numbers[0];
-  if (numbers.size() == 3) return numbers[size_t(channel)];
-  return std::nullopt;
-}
-
 // No channel may give back more than it receives: what stays in green (albedo[1]) and what green
 // re-radiates as red at most 1; blue likewise with both its shifts.
 static void check_fluorescent(const NodeCheckContext& ctx) {
@@ -40,11 +26,11 @@ static void check_fluorescent(const NodeCheckContext& ctx) {
   };
   const Column columns[] = {{"green", 1, {"green_to_red"}}, {"blue", 2, {"blue_to_red", "blue_to_green"}}};
   for (const Column& c : columns) {
-    std::optional<double> total = fluorescent_constant(ctx, "albedo", c.channel, 0.0);
+    std::optional<double> total = ctx.constant_channel("albedo", c.channel, 0.0);
     std::string terms = "albedo[" + std::to_string(c.channel) + "]";
     const char* named = "albedo";  // the error's pointer: the last shift the file gives
     for (const char* s : c.shifts) {
-      std::optional<double> shift = fluorescent_constant(ctx, s, 0, 0.0);
+      std::optional<double> shift = ctx.constant_channel(s, 0, 0.0);
       if (!total || !shift) {
         total.reset();
         break;

@@ -39,8 +39,8 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& x, std::vect
 // The boundary's reflectance at cosine c towards relative index eta (1 past the critical angle) and
 // the flakes' orientation P(beta): the kernels' (nodes/kernels/fresnel.glsl, flakes.glsl).
 double fresnel(double c, double eta) { return double(kernels::fresnel_dielectric(float(c), float(eta))); }
-double orientation(double cos_beta, double m) {
-  return double(kernels::lamina_flake_orientation(0, float(cos_beta), float(m)));  // Beckmann
+double orientation(const FlakeSlab& slab, double cos_beta) {
+  return double(kernels::lamina_flake_orientation(slab.distribution, float(cos_beta), float(slab.flake_slope)));
 }
 
 // A flake's reflectance and straight transmittance for light at cosine c to its normal: the
@@ -56,16 +56,17 @@ double flake_transmittance(const FlakeSlab& slab, double c) {
 }
 
 // <|cos alpha| (1 - t_p(alpha))>(mu) of eq. 10: the flakes' mean projected area along a direction
-// of cosine mu that does not pass light (the orientations beyond tan beta = 6 m weigh under e^-36).
+// of cosine mu that does not pass light (Beckmann's orientations beyond tan beta = 6 m weigh under
+// e^-36; the other laws' tails are integrated to the paint's plane).
 double projected_area(double mu, const FlakeSlab& slab) {
   const double m = slab.flake_slope;
   std::vector<double> beta, weight;
-  gauss_legendre(48, 0.0, std::min(0.5 * kPi, std::atan(6.0 * m)), beta, weight);
+  gauss_legendre(48, 0.0, slab.distribution == 0 ? std::min(0.5 * kPi, std::atan(6.0 * m)) : 0.5 * kPi, beta, weight);
   const int azimuths = 128;
   const double sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
   double sum = 0.0, norm = 0.0;
   for (size_t b = 0; b < beta.size(); ++b) {
-    const double p = orientation(std::cos(beta[b]), m) * std::sin(beta[b]) * weight[b];
+    const double p = orientation(slab, std::cos(beta[b])) * std::sin(beta[b]) * weight[b];
     double ring = 0.0;
     for (int a = 0; a < azimuths; ++a) {
       const double c =
@@ -185,6 +186,7 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
           "coverage must lie in [0, 20]");
   require(std::isfinite(slab.flake_slope) && slab.flake_slope >= 0.01 && slab.flake_slope <= 1.0,
           "flake_slope must lie in [0.01, 1]");
+  require(slab.distribution >= 0 && slab.distribution <= 2, "distribution must be 0 (Beckmann), 1 (Blinn) or 2 (GGX)");
   require(slab.film_ior == 0.0 || (std::isfinite(slab.film_ior) && slab.film_ior >= 1.0 && slab.film_ior <= 4.0 &&
                                    std::isfinite(slab.film_nm) && slab.film_nm >= 0.0 && slab.wavelength_nm > 0.0),
           "a coated flake's film_ior must lie in [1, 4], its film_nm be >= 0 and its wavelength > 0");
@@ -242,8 +244,7 @@ FlakeSlabSolution::FlakeSlabSolution(const FlakeSlab& slab, std::vector<double> 
           const double hz = side == 0 ? mu_[i] + mu_[j] : mu_[j] - mu_[i];
           const double length = std::sqrt(hx * hx + hy * hy + hz * hz);
           if (length < 1.0e-12) continue;  // straight on: not a reflection
-          const double p =
-              orientation(std::abs(hz) / length, slab.flake_slope) * flake_reflectance(slab, 0.5 * length) * dphi;
+          const double p = orientation(slab, std::abs(hz) / length) * flake_reflectance(slab, 0.5 * length) * dphi;
           if (p == 0.0) continue;
           auto& target = side == 0 ? reflected : transmitted;
           for (int m = 0; m < modes; ++m) target[size_t(m)][i * n + j] += p * cosines[size_t(a * modes + m)];

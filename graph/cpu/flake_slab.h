@@ -23,7 +23,8 @@ namespace lamina::cpu {
 struct FlakeSlab {
   double eta = 1.5;                  // the binder's index relative to air (>= 1)
   double coverage = 0.5;             // D <S> h: the flakes' total area per unit area of paint
-  double flake_slope = 0.2;          // Beckmann RMS slope of the flakes' normals about the paint's
+  double flake_slope = 0.2;          // the slope of the flakes' normals about the paint's (Beckmann's RMS slope)
+  int distribution = 0;              // their law, as the kernels number them: 0 Beckmann, 1 Blinn, 2 GGX
   double flake_reflectance = 0.5;    // r_p, from either side at any angle (the paper's mirror flakes)
   double flake_transmittance = 0.0;  // t_p: passes straight through a flake
   double binder_absorption = 0.0;    // kappa h: the binder's absorption depth at normal incidence

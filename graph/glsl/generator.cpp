@@ -277,6 +277,7 @@ class MaterialEmitter final : public OpWriter {
       << at << "flake = " << vec3_literal(q.flake) << ";\n"
       << at << "flake_paint = " << vec2_literal(q.flake_paint) << ";\n"
       << at << "flake_depth = " << vec3_literal(q.flake_depth) << ";\n"
+      << at << "flake_base = " << vec3_literal(q.flake_base) << ";\n"
       << at << "n = " << vec3_literal(q.n) << ";\n"
       << at << "k = " << vec3_literal(q.k) << ";\n"
       << at << "film_eta = " << vec3_literal(q.film_eta) << ";\n"

@@ -274,6 +274,7 @@ struct LaminaParams {
   vec3 flake;       // flake paint: the flakes' reflectance
   vec2 flake_paint; // and their coverage D <S> h and transmittance
   vec3 flake_depth; // and the flake layer's optical depth at normal incidence, both ways
+  vec3 flake_base;  // and the albedo of the base under the flakes
   vec3 n;           // conductor: the complex index relative to the medium above
   vec3 k;
   vec3 film_eta;    // thin film, coated flakes: the film's index relative to the medium above, per channel
@@ -1181,6 +1182,7 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
     p.flake = vec3(0.0f);
     p.flake_paint = vec2(0.0f);
     p.flake_depth = vec3(0.0f);
+    p.flake_base = vec3(0.0f);
     p.n = vec3(1.0f);
     p.k = vec3(0.0f);
     p.film_eta = vec3(1.0f);
@@ -1235,7 +1237,8 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.film_depth = inputs[i].scalars.w * p.n_above;
       LaminaFlakes flakes = lamina_entry_flakes(entries[i], p);
       p.flake_depth = lamina_flake_normal_depth(flakes);
-      p.diffuse = lamina_flake_paint_diffuse(flakes, inputs[i].colour0);
+      p.flake_base = inputs[i].colour0;
+      p.diffuse = lamina_flake_paint_diffuse(flakes, p.flake_base);
       // Its albedo at normal incidence, which lobe selection reads.
       p.albedo = lamina_flake_glitter_albedo(flakes) + LAMINA_PI * p.diffuse;
     } else if (LAMINA_FLUORESCENCE && entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT) {

@@ -72,15 +72,16 @@ TEST_CASE("flake slab: without flakes it is a Lambertian substrate under a smoot
 }
 
 TEST_CASE("flake slab: lossless flakes over a white substrate return all the light (white furnace)") {
-  // Plain flakes passing 0 and 0.6, and flakes coated with a lossless film (reflecting 0.05 to 0.5
-  // of the light by its angle).
-  for (double transmittance : {0.0, 0.6, -1.0}) {
+  // Plain flakes passing 0 and 0.6 (also with GGX's orientations, -0.5), and flakes coated with a
+  // lossless film (reflecting 0.05 to 0.5 of the light by its angle, -1).
+  for (double transmittance : {0.0, 0.6, -0.5, -1.0}) {
     cpu::FlakeSlab slab;
     slab.coverage = 1.5;
     slab.flake_slope = 0.25;
     slab.flake_transmittance = std::max(transmittance, 0.0);
     slab.flake_reflectance = 1.0 - slab.flake_transmittance;
-    if (transmittance < 0.0) {
+    if (transmittance == -0.5) slab.distribution = 2;
+    if (transmittance == -1.0) {
       slab.film_ior = 2.65;
       slab.film_nm = 160.0;
     }
@@ -93,7 +94,9 @@ TEST_CASE("flake slab: lossless flakes over a white substrate return all the lig
       CHECK(std::abs(solution.mirror(i) + solution.albedo(i) - 1.0) <= (test::kSanitized ? 2e-2 : 5e-4));
       worst = std::max(worst, std::abs(solution.mirror(i) + solution.albedo(i) - 1.0));
     }
-    MESSAGE((transmittance < 0.0 ? std::string("coated flakes") : "t_p " + std::to_string(transmittance))
+    MESSAGE((transmittance == -1.0   ? std::string("coated flakes")
+             : transmittance == -0.5 ? std::string("GGX flakes")
+                                     : "t_p " + std::to_string(transmittance))
             << ": the furnace's largest departure from 1 is " << worst);
   }
 }

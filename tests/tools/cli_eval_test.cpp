@@ -13,6 +13,7 @@
 #include "graph/compile.h"
 #include "graph/cpu/compare.h"
 #include "graph/cpu/evaluator.h"
+#include "graph/cpu/flake_slab.h"
 #include "graph/cpu/image.h"
 #include "graph/cpu/reference.h"
 #include "graph/cpu_test_support.h"
@@ -435,6 +436,59 @@ TEST_CASE("lamina reference prints the library's estimate with its error, and re
   CHECK(invalid.exit_code == 2);
   CHECK(invalid.out.empty());
   CHECK(invalid.err.find("ior_below_one.json") != std::string::npos);
+}
+
+TEST_CASE("lamina reference --flakes solves the paint's full model beside the evaluation, and refuses other stacks") {
+  // pearlescent_white's paint written out here as the full model's slab (its coat of index 1.5 the
+  // binder's boundary, its flakes' 9 degrees a Beckmann slope of tan 9 deg), solved coarsely as the
+  // command is asked to.
+  const std::string file = "examples/materials/pearlescent_white.json";
+  const double flake[3] = {0.3, 0.28, 0.24}, base[3] = {0.8, 0.8, 0.78};
+  const glm::vec3 wi = glm::normalize(glm::vec3(0.4f, 0.0f, 1.0f)), wo = glm::normalize(glm::vec3(0.0f, 0.3f, 1.0f));
+  cpu::Evaluator evaluator = library_evaluator(file);
+  const cpu::ShadingPoint point = evaluator.bind({});
+  auto albedo =
+      test::run_cli("reference " + file + " --flakes --coarse --albedo --theta 30 --json", test::source_dir());
+  auto brdf =
+      test::run_cli("reference " + file + " --flakes --coarse --wi 0.4,0,1 --wo 0,0.3,1 --json", test::source_dir());
+  INFO(albedo.err << brdf.err);
+  REQUIRE(albedo.exit_code == 0);
+  REQUIRE(brdf.exit_code == 0);
+  const nlohmann::json a = nlohmann::json::parse(albedo.out), f = nlohmann::json::parse(brdf.out);
+  const glm::vec3 view(std::sin(glm::radians(30.0f)), 0.0f, std::cos(glm::radians(30.0f)));
+  for (int c = 0; c < 3; ++c) {
+    cpu::FlakeSlab slab;
+    slab.eta = 1.5;
+    slab.coverage = 1.2;
+    slab.flake_slope = std::tan(9.0 * test::kPi / 180.0);
+    slab.flake_reflectance = flake[c];
+    slab.flake_transmittance = 0.68;
+    slab.substrate_albedo = base[c];
+    const cpu::FlakeSlabSolution seen(slab, {std::cos(30.0 * test::kPi / 180.0)}, cpu::FlakeSlabOptions::coarse());
+    CHECK(a.at("albedo")[c].get<double>() == doctest::Approx(seen.albedo(0) + seen.mirror(0)).epsilon(1e-5));
+    // wo lies a quarter turn from the mirror side of the plane of incidence.
+    const cpu::FlakeSlabSolution pair(slab, {double(wi.z), double(wo.z)}, cpu::FlakeSlabOptions::coarse());
+    CHECK(f.at("f")[c].get<double>() == doctest::Approx(pair.brdf(0, 1, test::kPi / 2.0)).epsilon(1e-5));
+    CHECK(a.at("model")[c].get<double>() == doctest::Approx(point.albedo(view)[c]).epsilon(1e-6));
+    CHECK(f.at("model")[c].get<double>() == doctest::Approx(point.eval(wi, wo)[c]).epsilon(1e-6));
+  }
+  CHECK(a.at("boundary_slope").get<double>() == doctest::Approx(std::tan(2.0 * test::kPi / 180.0)).epsilon(1e-5));
+  CHECK(a.at("spectral_fold") == false);
+
+  // Not a layer over a flake paint alone; --coarse without --flakes; directions below the horizon.
+  for (const std::string& bad :
+       {std::string(kCarPaint) + " --flakes --albedo --theta 30", file + " --coarse --albedo --theta 30",
+        file + " --flakes --coarse --wi 0.4,0,1 --wo 0,0.3,-1"}) {
+    auto run = test::run_cli("reference " + bad, test::source_dir());
+    INFO(bad << ": " << run.err);
+    CHECK(run.exit_code == 2);
+    CHECK(run.out.empty());
+    CHECK(run.err.find("lamina: ") != std::string::npos);
+  }
+  auto other =
+      test::run_cli(std::string("reference ") + kCarPaint + " --flakes --albedo --theta 30", test::source_dir());
+  CHECK(other.err.find("car_paint.json: material \"car_paint\": the full flake model takes a material whose surface "
+                       "is a layer over a substrate/flake_paint") != std::string::npos);
 }
 
 TEST_CASE("lamina compare prints the model against the reference, as text and JSON, and rejects mistakes") {
