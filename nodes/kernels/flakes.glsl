@@ -42,10 +42,12 @@ LAMINA_FN LaminaFlakes lamina_flakes(float coverage, vec3 colour, float transmit
   return f;
 }
 
-// A flake's reflectance r and straight transmittance t for light at cosine c to its normal.
+// A flake's reflectance r and straight transmittance t for light at cosine c to its normal. A coated
+// flake's film is reached through LAMINA_FLAKE_FILM, lamina_fresnel_film in C++ and in a GLSL module
+// with coated flakes, vec3(1.0) in the others (film.glsl's lamina_fresnel_base says why).
 LAMINA_FN void lamina_flake_optics(LAMINA_IN(LaminaFlakes) f, float c, LAMINA_OUT(vec3) r, LAMINA_OUT(vec3) t) {
   if (lamina_is_film(f.film)) {
-    r = LAMINA_FILM_FRESNEL(f.film, c, f.film_eta, vec3(1.0f), vec3(0.0f), f.film_depth);
+    r = LAMINA_FLAKE_FILM(f.film, c, f.film_eta, vec3(1.0f), vec3(0.0f), f.film_depth);
     t = vec3(1.0f) - r;
   } else {
     r = min(f.colour, vec3(1.0f - f.transmittance));
@@ -96,10 +98,11 @@ LAMINA_FN vec3 lamina_flake_depth_factor(vec3 x) {
 }
 
 // Glitter, eq. 36 inside the boundary: D <S> h r_p(alpha) (1 - e^-x) / x P(beta) / (4 cos l cos v), x
-// the depths along l and v (their sum given), alpha the angle between l and the flake that mirrors
-// it into v.
-LAMINA_FN vec3 lamina_flake_glitter_through(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, vec3 x) {
-  if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+// the depths along l and v (their sum, also returned), alpha the angle between l and the flake that
+// mirrors it into v.
+LAMINA_FN vec3 lamina_flake_glitter_and_depth(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, float kappa_h,
+                                              LAMINA_OUT(vec3) x) {
+  x = lamina_flake_depth(l, f, kappa_h) + lamina_flake_depth(v, f, kappa_h);
   vec3 r;
   vec3 t;
   lamina_flake_optics(f, dot(l, normalize(l + v)), r, t);
@@ -108,8 +111,8 @@ LAMINA_FN vec3 lamina_flake_glitter_through(vec3 l, vec3 v, LAMINA_IN(LaminaFlak
 
 LAMINA_FN vec3 lamina_flake_glitter(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, float kappa_h) {
   if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-  vec3 x = lamina_flake_depth(l, f, kappa_h) + lamina_flake_depth(v, f, kappa_h);
-  return lamina_flake_glitter_through(l, v, f, x);
+  vec3 x;
+  return lamina_flake_glitter_and_depth(l, v, f, kappa_h, x);
 }
 
 // Q of eq. 26 as the paper approximates it after eq. 28: what the flake layer and the boundary
@@ -141,11 +144,16 @@ LAMINA_FN vec3 lamina_flake_q_boundary(LAMINA_IN(LaminaFlakes) f, float kappa_h,
 }
 
 // Shade, eq. 28 inside the boundary: the substrate's r_s / pi through the flakes both ways,
-// e^-(tau(l) + tau(v)) h, raised by the light the layer sends back to it, 1 / (1 - 2 r_s Q).
+// e^-(tau(l) + tau(v)) h, raised by the light the layer sends back to it, 1 / (1 - 2 r_s Q); x the
+// two depths' sum.
+LAMINA_FN vec3 lamina_flake_shade_through(vec3 x, vec3 substrate, vec3 q) {
+  return substrate * exp(-x) * LAMINA_INV_PI / max(vec3(1.0f) - 2.0f * substrate * q, vec3(LAMINA_MIN_DENOM));
+}
+
 LAMINA_FN vec3 lamina_flake_shade(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, float kappa_h, vec3 substrate, vec3 q) {
   if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-  vec3 x = lamina_flake_depth(l, f, kappa_h) + lamina_flake_depth(v, f, kappa_h);
-  return substrate * exp(-x) * LAMINA_INV_PI / max(vec3(1.0f) - 2.0f * substrate * q, vec3(LAMINA_MIN_DENOM));
+  return lamina_flake_shade_through(lamina_flake_depth(l, f, kappa_h) + lamina_flake_depth(v, f, kappa_h), substrate,
+                                    q);
 }
 
 // --- substrate/flake_paint: the fast model under a layer -------------------------------------------
@@ -155,33 +163,30 @@ LAMINA_FN vec3 lamina_flake_shade(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, flo
 // its value at normal incidence, a Lambertian term (the energy-conserving model's diffuse part), and
 // the rest, which the flakes' longer paths at grazing angles take away (part of the lobe).
 
-// The shade's Lambertian part: the shade at normal incidence both ways.
-LAMINA_FN vec3 lamina_flake_paint_diffuse(LAMINA_IN(LaminaFlakes) f, vec3 substrate) {
-  vec3 up = vec3(0.0f, 0.0f, 1.0f);
-  return lamina_flake_shade(up, up, f, 0.0f, substrate, lamina_flake_q_flakes(f, 0.0f));
-}
-
-// The flake layer's optical depth at normal incidence, both ways (the shade's Lambertian part's).
-LAMINA_FN vec3 lamina_flake_normal_depth(LAMINA_IN(LaminaFlakes) f) {
-  return 2.0f * lamina_flake_depth(vec3(0.0f, 0.0f, 1.0f), f, 0.0f);
-}
-
-// A flake paint's BRDF inside the binder: glitter + shade, the shade's Lambertian part `diffuse`
-// (lamina_flake_paint_diffuse) scaled by the longer paths' attenuation, from x0
-// (lamina_flake_normal_depth) to the depths along l and v.
-LAMINA_FN vec3 lamina_flake_paint_eval(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, vec3 diffuse, vec3 x0) {
-  if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-  vec3 x = lamina_flake_depth(l, f, 0.0f) + lamina_flake_depth(v, f, 0.0f);
-  return lamina_flake_glitter_through(l, v, f, x) + diffuse * exp(x0 - x);
-}
-
-// The glitter's albedo at normal incidence, D <S> h r_p (1 - e^-x) / x (its lobe integrates to
-// about 1 there).
-LAMINA_FN vec3 lamina_flake_glitter_albedo(LAMINA_IN(LaminaFlakes) f) {
+// What a shading point fixes of a flake paint: x0, the flake layer's depth at normal incidence both
+// ways; the shade's Lambertian part, the shade at normal incidence both ways; and the paint's albedo
+// there as lobe selection estimates it, the glitter's D <S> h r_p (1 - e^-x0) / x0 (its lobe
+// integrates to about 1 there) plus pi times that part. A coated flake's film is taken at normal
+// incidence once here and once in Q's loop: a shader then holds two copies of its kernel.
+LAMINA_FN void lamina_flake_paint_resolve(LAMINA_IN(LaminaFlakes) f, vec3 substrate, LAMINA_OUT(vec3) x0,
+                                          LAMINA_OUT(vec3) diffuse, LAMINA_OUT(vec3) albedo) {
   vec3 r;
   vec3 t;
   lamina_flake_optics(f, 1.0f, r, t);
-  return r * f.coverage * lamina_flake_depth_factor(2.0f * lamina_flake_depth_through(vec3(0.0f, 0.0f, 1.0f), f, t, 0.0f));
+  x0 = 2.0f * lamina_flake_depth_through(vec3(0.0f, 0.0f, 1.0f), f, t, 0.0f);
+  diffuse = lamina_flake_shade_through(x0, substrate, lamina_flake_q_flakes(f, 0.0f));
+  albedo = r * f.coverage * lamina_flake_depth_factor(x0) + LAMINA_PI * diffuse;
+}
+
+// A flake paint's BRDF inside the binder: glitter + shade, the shade's Lambertian part `diffuse`
+// scaled by the longer paths' attenuation, from x0 to the depths along l and v (both from
+// lamina_flake_paint_resolve). Straight-line code: the same three optics taken in a loop compiled
+// four times slower on llvmpipe, for plain flakes too.
+LAMINA_FN vec3 lamina_flake_paint_eval(vec3 l, vec3 v, LAMINA_IN(LaminaFlakes) f, vec3 diffuse, vec3 x0) {
+  if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+  vec3 x;
+  vec3 glitter = lamina_flake_glitter_and_depth(l, v, f, 0.0f, x);
+  return glitter + diffuse * exp(x0 - x);
 }
 
 // The share of a flake paint's draws its glitter takes, by the glitter's albedo against the whole

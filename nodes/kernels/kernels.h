@@ -15,9 +15,10 @@
 //   LAMINA_PARTS          kMaxLobes, the parts a blend may have (each part has a lobe)
 //   LAMINA_BLEND          kMaxStackEntries, the length of a blend's array of mixes and parts
 //   LAMINA_FILM_FRESNEL   lamina_fresnel_film, a thin film's Fresnel term (film.glsl)
+//   LAMINA_FLAKE_FILM     lamina_fresnel_film, a coated flake's (flakes.glsl)
 //   LAMINA_FLUORESCENCE   true: a stack may have a fluorescent base (stack.glsl, lamina_stack_glows)
 // The GLSL back end embeds the files in the order included below, after `#define LAMINA_STACK`,
-// `LAMINA_PARTS`, `LAMINA_BLEND`, `LAMINA_FILM_FRESNEL` and `LAMINA_FLUORESCENCE` and
+// `LAMINA_PARTS`, `LAMINA_BLEND`, `LAMINA_FILM_FRESNEL`, `LAMINA_FLAKE_FILM` and `LAMINA_FLUORESCENCE` and
 // `precision highp float;` for ES.
 //
 // Everything lands in lamina::kernels, which also sees all of glm (`using namespace glm`), as GLSL
@@ -37,6 +38,7 @@
 #define LAMINA_PARTS lamina::kMaxLobes
 #define LAMINA_BLEND lamina::kMaxStackEntries
 #define LAMINA_FILM_FRESNEL lamina_fresnel_film
+#define LAMINA_FLAKE_FILM lamina_fresnel_film
 #define LAMINA_FLUORESCENCE true
 
 namespace lamina::kernels {
@@ -88,4 +90,5 @@ inline float lamina_albedo_texel(int x, int y) {
 #undef LAMINA_PARTS
 #undef LAMINA_BLEND
 #undef LAMINA_FILM_FRESNEL
+#undef LAMINA_FLAKE_FILM
 #undef LAMINA_FLUORESCENCE

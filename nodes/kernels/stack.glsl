@@ -1236,11 +1236,9 @@ LAMINA_FN void lamina_stack_resolve(int count, LAMINA_IN_ARRAY(LaminaEntry) entr
       p.film_eta = max(inputs[i].colour2, vec3(1.0e-3f)) / p.n_above;
       p.film_depth = inputs[i].scalars.w * p.n_above;
       LaminaFlakes flakes = lamina_entry_flakes(entries[i], p);
-      p.flake_depth = lamina_flake_normal_depth(flakes);
       p.flake_base = inputs[i].colour0;
-      p.diffuse = lamina_flake_paint_diffuse(flakes, p.flake_base);
-      // Its albedo at normal incidence, which lobe selection reads.
-      p.albedo = lamina_flake_glitter_albedo(flakes) + LAMINA_PI * p.diffuse;
+      // Its albedo at normal incidence is what lobe selection reads.
+      lamina_flake_paint_resolve(flakes, p.flake_base, p.flake_depth, p.diffuse, p.albedo);
     } else if (LAMINA_FLUORESCENCE && entries[i].model == LAMINA_SUBSTRATE_FLUORESCENT) {
       // Its matrix, and as albedo what it returns of white light (the row sums), which the
       // selection and every white-light query read as a Lambert base's.

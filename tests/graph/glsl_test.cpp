@@ -397,15 +397,22 @@ TEST_CASE("glsl: a module embeds only the kernel pieces its materials need, each
 }
 
 TEST_CASE("glsl: only a module with a thin film embeds the film's kernel, so the others' conductors never inline it") {
+  // A film over a base (substrate/thin_film) reaches every conductor's Fresnel term; coated flakes'
+  // film reaches the flakes alone.
   for (const fs::path& file : glsl_material_files()) {
     CAPTURE(file);
     Compiled c = compile_file(file);
-    bool film = false;
+    bool film = false, flake_film = false;
     for (const Program& p : c.programs)
-      for (const StackEntry& e : p.stack) film = film || kernels::lamina_is_film(e.fresnel);
+      for (const StackEntry& e : p.stack) {
+        const bool coated = e.model == kernels::LAMINA_SUBSTRATE_FLAKE_PAINT;
+        film = film || (kernels::lamina_is_film(e.fresnel) && !coated);
+        flake_film = flake_film || (kernels::lamina_is_film(e.fresnel) && coated);
+      }
     const std::string source = generate(c.programs, glsl::Target::Glsl330, false);
-    CHECK((source.find("vec3 lamina_fresnel_film(") != std::string::npos) == film);
+    CHECK((source.find("vec3 lamina_fresnel_film(") != std::string::npos) == (film || flake_film));
     CHECK((source.find("#define LAMINA_FILM_FRESNEL lamina_fresnel_film\n") != std::string::npos) == film);
+    CHECK((source.find("#define LAMINA_FLAKE_FILM lamina_fresnel_film\n") != std::string::npos) == flake_film);
   }
 }
 

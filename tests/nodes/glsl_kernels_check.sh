@@ -89,10 +89,11 @@ void main() {
   // flakes
   LaminaFlakes flakes = lamina_flakes(0.5f, vec3(0.9f), 0.1f, 0, m);
   LaminaFlakes coated = flakes;
+  vec3 flake_x;
   coated.film = 3;
   coated.film_eta = vec3(1.6f);
   coated.film_depth = 240.0f;
-  s += lamina_flake_glitter(w, v, flakes, 0.2f) + lamina_flake_glitter_through(w, v, coated, vec3(0.3f));
+  s += lamina_flake_glitter(w, v, flakes, 0.2f) + lamina_flake_glitter_and_depth(w, v, coated, 0.1f, flake_x);
   vec3 flake_q = lamina_flake_q_flakes(coated, 0.2f) + lamina_flake_q_boundary(flakes, 0.2f, 1.5f);
   s += lamina_flake_shade(w, v, flakes, 0.2f, vec3(0.5f), flake_q) + flake_q;
   f += lamina_flake_orientation(1, c, m) + lamina_flake_depth_share(c) + lamina_flake_lobe(w, v, 2, m);
@@ -101,9 +102,12 @@ void main() {
   vec3 flake_t;
   lamina_flake_optics(coated, c, flake_r, flake_t);
   s += lamina_flake_depth_through(w, coated, flake_t, 0.0f) + flake_r;
-  vec3 flake_diffuse = lamina_flake_paint_diffuse(flakes, vec3(0.5f));
-  s += lamina_flake_paint_eval(w, v, coated, flake_diffuse, lamina_flake_normal_depth(coated));
-  s += lamina_flake_glitter_albedo(flakes);
+  vec3 flake_x0;
+  vec3 flake_diffuse;
+  vec3 flake_albedo;
+  lamina_flake_paint_resolve(coated, vec3(0.5f), flake_x0, flake_diffuse, flake_albedo);
+  s += lamina_flake_paint_eval(w, v, coated, flake_diffuse, flake_x0) + flake_albedo;
+  s += lamina_flake_shade_through(flake_x0, vec3(0.5f), flake_q) + flake_x;
   f += lamina_flake_glitter_share(vec3(0.5f), flake_diffuse);
   s += lamina_fresnel_film(LAMINA_FRESNEL_FILM_RGB, c, vec3(1.4f), vec3(0.2f), vec3(3.0f), 300.0f);
   s += lamina_fresnel_base(LAMINA_FRESNEL_FILM_SPECTRAL, c, vec3(1.5f), vec3(0.0f), vec3(2.4f, 2.5f, 2.6f), 250.0f);
@@ -238,12 +242,13 @@ for target in 330 450 es300; do
       450) echo "#version 450 core" ;;
       es300) printf '%s\n' "#version 300 es" "precision highp float;" "precision highp int;" ;;
     esac
-    # The macros the back end defines: the lengths of the stack's arrays, the film's Fresnel term and
+    # The macros the back end defines: the lengths of the stack's arrays, the film's Fresnel terms and
     # whether a base may fluoresce (common.glsl defines the others).
     echo "#define LAMINA_STACK 4"
     echo "#define LAMINA_PARTS 2"
     echo "#define LAMINA_BLEND 3"
     echo "#define LAMINA_FILM_FRESNEL lamina_fresnel_film"
+    echo "#define LAMINA_FLAKE_FILM lamina_fresnel_film"
     echo "#define LAMINA_FLUORESCENCE true"
     # and the dielectric albedo table's reader (energy.glsl): a texture of every combination.
     echo "uniform highp usampler2D lamina_dielectric_albedo_table;"
